@@ -1,0 +1,70 @@
+// Builds every page of the book from chapters/*.md and writes them next to their
+// sources (index.html at the root, chapters/NN-slug.html), where Vite picks them
+// up as the inputs of a multi-page site. The generated HTML is not committed.
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { loadChapters, type ChapterSource } from './chapters.ts';
+import {
+  createMarkdown,
+  renderChapterBody,
+  resolveEquationReferences,
+  type EquationLabel,
+  type RenderedChapter,
+} from './markdown.ts';
+import { chapterPath, renderChapterPage, renderHomePage } from './pages.ts';
+
+export interface BookPage {
+  /** Path relative to the project root, e.g. `chapters/02-extinction-and-transmittance.html`. */
+  file: string;
+  html: string;
+  chapter?: ChapterSource;
+  widgets: string[];
+}
+
+export interface Book {
+  chapters: ChapterSource[];
+  pages: BookPage[];
+  equations: Map<string, EquationLabel>;
+}
+
+export function buildBook(root: string): Book {
+  const chapters = loadChapters(join(root, 'chapters'));
+  const md = createMarkdown();
+  const rendered = new Map<string, RenderedChapter>();
+  const equations = new Map<string, EquationLabel>();
+  for (const chapter of chapters) {
+    const result = renderChapterBody(md, chapter.body, chapter.number, chapterPath(chapter), chapter.file);
+    for (const equation of result.equations) {
+      const existing = equations.get(equation.label);
+      if (existing) {
+        throw new Error(`${chapter.file}: equation label "${equation.label}" is also defined on ${existing.page}`);
+      }
+      equations.set(equation.label, equation);
+    }
+    rendered.set(chapter.slug, result);
+  }
+  const pages: BookPage[] = [{ file: 'index.html', html: renderHomePage(chapters), widgets: [] }];
+  chapters.forEach((chapter, index) => {
+    const result = rendered.get(chapter.slug);
+    if (!result) return;
+    const html = resolveEquationReferences(result.html, equations, chapterPath(chapter), chapter.file);
+    pages.push({
+      file: `chapters/${chapter.slug}.html`,
+      html: renderChapterPage(chapter, html, result.toc, chapters[index - 1], chapters[index + 1]),
+      chapter,
+      widgets: result.widgets,
+    });
+  });
+  return { chapters, pages, equations };
+}
+
+/** Builds the book and writes its pages; returns the page files, for Vite's inputs. */
+export function writeBook(root: string): string[] {
+  const book = buildBook(root);
+  for (const page of book.pages) {
+    const path = join(root, page.file);
+    mkdirSync(join(path, '..'), { recursive: true });
+    writeFileSync(path, page.html);
+  }
+  return book.pages.map((page) => page.file);
+}

@@ -1,0 +1,199 @@
+// Markdown → HTML for one chapter, with math typeset by KaTeX at build time
+// (no math JavaScript at run time), numbered equation labels, heading anchors for
+// the table of contents, quizzes, and no-JavaScript fallbacks inside widgets.
+import katex from 'katex';
+import MarkdownIt from 'markdown-it';
+import anchor from 'markdown-it-anchor';
+import { tex } from '@mdit/plugin-tex';
+import { parseQuiz } from './quiz.ts';
+import { WIDGET_CATALOG } from '../../widgets/catalog.ts';
+
+export interface TocEntry {
+  level: 2 | 3;
+  id: string;
+  text: string;
+}
+
+export interface EquationLabel {
+  label: string;
+  /** Printed number, e.g. "2.3". */
+  number: string;
+  /** Page the equation lives on, e.g. `/chapters/02-extinction-and-transmittance.html`. */
+  page: string;
+}
+
+export interface RenderedChapter {
+  html: string;
+  toc: TocEntry[];
+  equations: EquationLabel[];
+  widgets: string[];
+}
+
+interface RenderEnv {
+  chapterNumber: number;
+  page: string;
+  file: string;
+  equations: EquationLabel[];
+  quizCount: number;
+}
+
+const LABEL = /\\label\{([^}]+)\}/g;
+const LABEL_NAME = /^eq:[a-z0-9-]+$/;
+
+export function slugify(text: string): string {
+  return text
+    .toLowerCase()
+    .normalize('NFKD')
+    .replace(/[\u0300-\u036f]/g, '')
+    .replace(/<[^>]*>/g, '')
+    .replace(/[^a-z0-9]+/g, '-')
+    .replace(/^-+|-+$/g, '');
+}
+
+function escapeHtml(text: string): string {
+  return text
+    .replace(/&/g, '&amp;')
+    .replace(/</g, '&lt;')
+    .replace(/>/g, '&gt;')
+    .replace(/"/g, '&quot;');
+}
+
+function renderMath(content: string, displayMode: boolean, env: RenderEnv): string {
+  const labels = [...content.matchAll(LABEL)].map((m) => m[1] ?? '');
+  const body = content.replace(LABEL, '');
+  let html: string;
+  try {
+    html = katex.renderToString(body, { displayMode, throwOnError: true, output: 'htmlAndMathml' });
+  } catch (error) {
+    throw new Error(`${env.file}: KaTeX cannot typeset "${content.trim()}": ${String(error)}`);
+  }
+  if (!displayMode) {
+    if (labels.length) throw new Error(`${env.file}: \\label is only allowed in display math`);
+    return html;
+  }
+  if (labels.length > 1) throw new Error(`${env.file}: one \\label per display equation`);
+  const label = labels[0];
+  if (label === undefined) return `<div class="equation">${html}</div>`;
+  if (!LABEL_NAME.test(label)) {
+    throw new Error(`${env.file}: equation label "${label}" must look like eq:lowercase-words`);
+  }
+  const number = `${env.chapterNumber}.${env.equations.length + 1}`;
+  env.equations.push({ label, number, page: env.page });
+  return (
+    `<div class="equation" id="${label}">${html}` +
+    `<a class="equation-number" href="#${label}" aria-label="Equation ${number}">(${number})</a></div>`
+  );
+}
+
+function renderQuiz(md: MarkdownIt, source: string, env: RenderEnv): string {
+  const quiz = parseQuiz(source, env.file);
+  env.quizCount += 1;
+  const id = `quiz-${env.quizCount}`;
+  const options = quiz.options
+    .map(
+      (option, index) =>
+        `<li><label><input type="radio" name="${id}" value="${index}"` +
+        `${option.correct ? ' data-correct' : ''}> <span>${md.renderInline(option.text, env)}</span></label></li>`,
+    )
+    .join('');
+  return (
+    `<form class="quiz" id="${id}" aria-labelledby="${id}-question">` +
+    `<p class="quiz-kicker">Question</p>` +
+    `<p class="quiz-question" id="${id}-question">${md.renderInline(quiz.question, env)}</p>` +
+    `<ul class="quiz-options">${options}</ul>` +
+    `<div class="quiz-actions"><button type="submit" class="button">Check answer</button>` +
+    `<p class="quiz-feedback" role="status" aria-live="polite"></p></div>` +
+    `<details class="quiz-explanation"><summary>Explanation</summary>${md.render(quiz.explanation, env)}</details>` +
+    `</form>`
+  );
+}
+
+/** The text a widget shows where it cannot run (no JavaScript, or before it loads). */
+function widgetFallback(name: string): string {
+  const entry = WIDGET_CATALOG[name];
+  const title = entry ? entry.title : name;
+  return (
+    `<p class="widget-fallback">Interactive figure “${escapeHtml(title)}”: ` +
+    `it needs JavaScript (and draws with WebGPU where the browser has it).</p>`
+  );
+}
+
+export function createMarkdown(): MarkdownIt {
+  const md = new MarkdownIt({ html: true, typographer: true, linkify: false });
+  md.use(tex, {
+    delimiters: 'dollars',
+    render: (content: string, displayMode: boolean, env: unknown) =>
+      renderMath(content, displayMode, env as RenderEnv),
+  });
+  md.use(anchor, { slugify, level: [2, 3], tabIndex: false });
+
+  const defaultFence = md.renderer.rules.fence;
+  md.renderer.rules.fence = (tokens, index, options, env, self) => {
+    const token = tokens[index];
+    if (token && token.info.trim() === 'quiz') return renderQuiz(md, token.content, env as RenderEnv);
+    return defaultFence ? defaultFence(tokens, index, options, env, self) : '';
+  };
+
+  // Figure captions sit inside raw HTML blocks, which Markdown leaves alone; typeset
+  // their inline Markdown and math too.
+  const defaultHtmlBlock = md.renderer.rules.html_block;
+  md.renderer.rules.html_block = (tokens, index, options, env, self) => {
+    const html = defaultHtmlBlock ? defaultHtmlBlock(tokens, index, options, env, self) : '';
+    return html.replace(
+      /<figcaption>([\s\S]*?)<\/figcaption>/g,
+      (_all, caption: string) => `<figcaption>${md.renderInline(caption.trim(), env)}</figcaption>`,
+    );
+  };
+  return md;
+}
+
+/** Renders one chapter body. Equation references are resolved later, across chapters. */
+export function renderChapterBody(
+  md: MarkdownIt,
+  body: string,
+  chapterNumber: number,
+  page: string,
+  file: string,
+): RenderedChapter {
+  const env: RenderEnv = { chapterNumber, page, file, equations: [], quizCount: 0 };
+  const tokens = md.parse(body, env);
+  const toc: TocEntry[] = [];
+  tokens.forEach((token, index) => {
+    if (token.type !== 'heading_open') return;
+    const level = Number(token.tag.slice(1));
+    if (level !== 2 && level !== 3) return;
+    const inline = tokens[index + 1];
+    toc.push({ level, id: token.attrGet('id') ?? '', text: inline?.content ?? '' });
+  });
+  let html = md.renderer.render(tokens, md.options, env);
+
+  const widgets: string[] = [];
+  html = html.replace(/<(sb-[a-z0-9-]+)([^>]*)>\s*<\/\1>/g, (_all, tag: string, attrs: string) => {
+    const name = tag.slice(3);
+    if (!WIDGET_CATALOG[name]) {
+      throw new Error(`${file}: unknown widget <${tag}>; known: ${Object.keys(WIDGET_CATALOG).join(', ')}`);
+    }
+    widgets.push(name);
+    return `<${tag}${attrs}>${widgetFallback(name)}</${tag}>`;
+  });
+  return { html, toc, equations: env.equations, widgets };
+}
+
+/**
+ * Replaces each empty link to an equation, `[](#eq:name)`, with its number and a
+ * link to its page. An unknown label is an error: a chapter may not cite an
+ * equation that does not exist.
+ */
+export function resolveEquationReferences(
+  html: string,
+  labels: Map<string, EquationLabel>,
+  currentPage: string,
+  file: string,
+): string {
+  return html.replace(/<a href="#(eq:[^"]+)"><\/a>/g, (_all, label: string) => {
+    const target = labels.get(label);
+    if (!target) throw new Error(`${file}: reference to unknown equation label "${label}"`);
+    const href = target.page === currentPage ? `#${label}` : `${target.page}#${label}`;
+    return `<a class="eqref" href="${href}">(${target.number})</a>`;
+  });
+}

@@ -1,0 +1,107 @@
+// HTML templates of the book's pages: the home page with the list of chapters,
+// and a chapter page with its table of contents and previous/next links.
+// Pages are complete without JavaScript; the script only adds widgets, quiz
+// checking and the theme switch.
+import type { ChapterSource } from './chapters.ts';
+import type { TocEntry } from './markdown.ts';
+
+export const SITE_TITLE = 'Scatterbook';
+export const SITE_SUBTITLE = 'Light in participating media — an interactive textbook';
+
+export function chapterPath(chapter: Pick<ChapterSource, 'slug'>): string {
+  return `/chapters/${chapter.slug}.html`;
+}
+
+function escapeHtml(text: string): string {
+  return text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;');
+}
+
+function shell(title: string, description: string, body: string): string {
+  return `<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta name="description" content="${escapeHtml(description)}">
+<title>${escapeHtml(title)}</title>
+<link rel="stylesheet" href="/src/book/styles/book.css">
+<script type="module" src="/src/book/main.ts"></script>
+</head>
+<body>
+<a class="skip-link" href="#content">Skip to content</a>
+<header class="site-header">
+  <a class="site-title" href="/index.html">${SITE_TITLE}</a>
+  <span class="site-subtitle">${SITE_SUBTITLE}</span>
+  <button type="button" class="theme-toggle" hidden aria-label="Switch between light and dark theme">Theme</button>
+</header>
+${body}
+<footer class="site-footer">
+  <p>${SITE_TITLE}: every figure is computed live from one WGSL shader library whose float64 TypeScript twin the tests hold it against.</p>
+</footer>
+</body>
+</html>
+`;
+}
+
+export function renderHomePage(chapters: readonly ChapterSource[]): string {
+  const items = chapters
+    .map(
+      (chapter) =>
+        `<li><a href="${chapterPath(chapter)}"><span class="chapter-number">${chapter.number}</span>` +
+        `<span class="chapter-title">${escapeHtml(chapter.title)}</span></a>` +
+        `<p>${escapeHtml(chapter.summary)}</p></li>`,
+    )
+    .join('\n');
+  const body = `<main id="content" class="home">
+<h1>${SITE_TITLE}</h1>
+<p class="lede">How light is absorbed, scattered and emitted in fog, smoke, milk, skin and CT volumes —
+with live figures that show what accuracy costs in time.</p>
+<h2>Chapters</h2>
+<ol class="chapter-list">
+${items}
+</ol>
+</main>`;
+  return shell(`${SITE_TITLE} — ${SITE_SUBTITLE}`, SITE_SUBTITLE, body);
+}
+
+function renderToc(toc: readonly TocEntry[]): string {
+  if (toc.length === 0) return '';
+  const items = toc
+    .map((entry) => `<li class="toc-level-${entry.level}"><a href="#${entry.id}">${escapeHtml(entry.text)}</a></li>`)
+    .join('');
+  return `<nav class="toc" aria-label="On this page"><p class="toc-title">On this page</p><ol>${items}</ol></nav>`;
+}
+
+function pagerLink(chapter: ChapterSource | undefined, rel: 'prev' | 'next'): string {
+  if (!chapter) return '<span></span>';
+  const label = rel === 'prev' ? 'Previous' : 'Next';
+  return (
+    `<a class="pager-${rel}" rel="${rel}" href="${chapterPath(chapter)}">` +
+    `<span class="pager-label">${label}</span>` +
+    `<span class="pager-title">${chapter.number}. ${escapeHtml(chapter.title)}</span></a>`
+  );
+}
+
+export function renderChapterPage(
+  chapter: ChapterSource,
+  html: string,
+  toc: readonly TocEntry[],
+  previous: ChapterSource | undefined,
+  next: ChapterSource | undefined,
+): string {
+  const body = `<div class="chapter-layout">
+${renderToc(toc)}
+<main id="content" class="chapter" data-chapter="${chapter.number}">
+<article>
+<header class="chapter-header">
+<p class="chapter-kicker">Chapter ${chapter.number}</p>
+<h1>${escapeHtml(chapter.title)}</h1>
+<p class="chapter-summary">${escapeHtml(chapter.summary)}</p>
+</header>
+${html}
+</article>
+<nav class="pager" aria-label="Chapters">${pagerLink(previous, 'prev')}${pagerLink(next, 'next')}</nav>
+</main>
+</div>`;
+  return shell(`${chapter.number}. ${chapter.title} — ${SITE_TITLE}`, chapter.summary, body);
+}

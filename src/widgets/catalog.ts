@@ -1,0 +1,9 @@
+// The registry of widgets, as data (no DOM): the chapter build checks widget tags
+// against it, the tests iterate over it, and the element loader maps each name
+// to its module. One entry per folder in src/widgets/.
+import type { WidgetEntry } from './parameters.ts';
+import { BEER_LAW } from './beer-law/schema.ts';
+
+export const WIDGET_CATALOG: Readonly<Record<string, WidgetEntry>> = {
+  [BEER_LAW.name]: BEER_LAW,
+};

@@ -1,0 +1,14 @@
+import { defineConfig } from 'vite';
+import { scatterbookChapters } from './src/book/build/vitePlugin.ts';
+
+const root = import.meta.dirname;
+
+export default defineConfig({
+  root,
+  publicDir: 'public',
+  plugins: [scatterbookChapters(root)],
+  server: { port: 5173, strictPort: false, host: 'localhost' },
+  preview: { port: 4173, host: 'localhost' },
+  build: { outDir: 'dist', emptyOutDir: true, target: 'es2022' },
+  worker: { format: 'es' },
+});
