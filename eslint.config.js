@@ -2,11 +2,26 @@
 // rules from STYLE.md (no console.log or debugger left in shipped code).
 import js from '@eslint/js';
 import tseslint from 'typescript-eslint';
+import globals from 'globals';
 
 export default tseslint.config(
   { ignores: ['node_modules', 'dist', 'test-results', 'playwright-report', 'bench/results'] },
   js.configs.recommended,
   ...tseslint.configs.recommended,
+  {
+    languageOptions: { globals: { ...globals.browser } },
+  },
+  {
+    files: [
+      'scripts/**',
+      'tests/**',
+      'bench/**',
+      '*.config.{js,ts}',
+      'src/cli/**',
+      'src/book/build/**',
+    ],
+    languageOptions: { globals: { ...globals.node } },
+  },
   {
     rules: {
       'no-console': ['error', { allow: ['warn', 'error'] }],

@@ -62,14 +62,21 @@ export async function runCompute(device: GPUDevice, job: ComputeJob): Promise<Co
       const pipeline = pipelineFor(device, job.code, entryPoint);
       const entries: GPUBindGroupEntry[] = job.inputs.map((data, binding) => {
         const buffer = track(
-          device.createBuffer({ size: byteSize(data.length), usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST }),
+          device.createBuffer({
+            size: byteSize(data.length),
+            usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+          }),
         );
-        if (data.length > 0) device.queue.writeBuffer(buffer, 0, data.buffer, data.byteOffset, data.byteLength);
+        if (data.length > 0)
+          device.queue.writeBuffer(buffer, 0, data.buffer, data.byteOffset, data.byteLength);
         return { binding, resource: { buffer } };
       });
       const outputSize = byteSize(job.outputWords);
       const output = track(
-        device.createBuffer({ size: outputSize, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC }),
+        device.createBuffer({
+          size: outputSize,
+          usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
+        }),
       );
       entries.push({ binding: job.inputs.length, resource: { buffer: output } });
       if (job.uniforms) {
@@ -79,11 +86,20 @@ export async function runCompute(device: GPUDevice, job: ComputeJob): Promise<Co
             usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
           }),
         );
-        device.queue.writeBuffer(uniform, 0, job.uniforms.buffer, job.uniforms.byteOffset, job.uniforms.byteLength);
+        device.queue.writeBuffer(
+          uniform,
+          0,
+          job.uniforms.buffer,
+          job.uniforms.byteOffset,
+          job.uniforms.byteLength,
+        );
         entries.push({ binding: job.inputs.length + 1, resource: { buffer: uniform } });
       }
       const readBack = track(
-        device.createBuffer({ size: outputSize, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST }),
+        device.createBuffer({
+          size: outputSize,
+          usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+        }),
       );
       const bindGroup = device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries });
       const encoder = device.createCommandEncoder();

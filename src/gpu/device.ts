@@ -41,7 +41,8 @@ async function createContext(): Promise<GpuContext> {
     for (const listener of errorListeners) listener(message);
   });
   const info = adapter.info;
-  const adapterDescription = [info.vendor, info.architecture, info.description].filter(Boolean).join(' ') || 'WebGPU';
+  const adapterDescription =
+    [info.vendor, info.architecture, info.description].filter(Boolean).join(' ') || 'WebGPU';
   return { device, adapterDescription, hasTimestamps };
 }
 

@@ -10,17 +10,25 @@ export class GpuValidationError extends Error {
 }
 
 /** Runs `body` inside validation and out-of-memory error scopes and throws the first error. */
-export async function withErrorScopes<T>(device: GPUDevice, what: string, body: () => T): Promise<T> {
+export async function withErrorScopes<T>(
+  device: GPUDevice,
+  what: string,
+  body: () => T,
+): Promise<T> {
   device.pushErrorScope('out-of-memory');
   device.pushErrorScope('validation');
-  let result: T;
+  let result: T | undefined;
+  let thrown: unknown = null;
   try {
     result = body();
-  } finally {
-    const validation = await device.popErrorScope();
-    const memory = await device.popErrorScope();
-    const error = validation ?? memory;
-    if (error) throw new GpuValidationError(what, error.message);
+  } catch (error) {
+    thrown = error;
   }
-  return result;
+  // Pop both scopes whatever happened, so that the device's scope stack stays balanced.
+  const validation = await device.popErrorScope();
+  const memory = await device.popErrorScope();
+  const error = validation ?? memory;
+  if (error) throw new GpuValidationError(what, error.message);
+  if (thrown !== null) throw thrown;
+  return result as T;
 }

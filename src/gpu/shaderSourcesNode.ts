@@ -9,7 +9,8 @@ export function loadShaderLibrary(directory: string): ShaderLibrary {
     for (const name of readdirSync(folder)) {
       const path = join(folder, name);
       if (statSync(path).isDirectory()) visit(path);
-      else if (name.endsWith('.wesl')) library[relative(directory, path).split('\\').join('/')] = readFileSync(path, 'utf8');
+      else if (name.endsWith('.wesl'))
+        library[relative(directory, path).split('\\').join('/')] = readFileSync(path, 'utf8');
     }
   };
   visit(directory);

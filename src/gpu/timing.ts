@@ -33,7 +33,11 @@ export class GpuTimer {
   passDescriptor(): { timestampWrites?: GPUComputePassTimestampWrites } {
     if (!this.querySet) return {};
     return {
-      timestampWrites: { querySet: this.querySet, beginningOfPassWriteIndex: 0, endOfPassWriteIndex: 1 },
+      timestampWrites: {
+        querySet: this.querySet,
+        beginningOfPassWriteIndex: 0,
+        endOfPassWriteIndex: 1,
+      },
     };
   }
 
@@ -53,7 +57,8 @@ export class GpuTimer {
     if (!this.resultBuffer) return null;
     await this.resultBuffer.mapAsync(GPUMapMode.READ);
     const [begin, end] = new BigUint64Array(this.resultBuffer.getMappedRange());
-    const elapsed = begin !== undefined && end !== undefined && end >= begin ? Number(end - begin) / 1e6 : null;
+    const elapsed =
+      begin !== undefined && end !== undefined && end >= begin ? Number(end - begin) / 1e6 : null;
     this.resultBuffer.unmap();
     return elapsed;
   }

@@ -5,12 +5,17 @@
 
 export const GRID1D_MAX_CELLS = 16;
 
+/** Same clamp as the shader: keeps τ finite in f32 without changing any T (τ ≤ 1e36). */
+export const FINITE_LIMIT = 1e18;
+
+const clampFinite = (x: number): number => Math.min(Math.max(x, 0), FINITE_LIMIT);
+
 export function transmittanceFromOpticalThickness(tau: number): number {
   return Math.exp(-Math.max(tau, 0));
 }
 
 export function opticalThicknessHomogeneous(sigmaT: number, distance: number): number {
-  return Math.max(sigmaT, 0) * Math.max(distance, 0);
+  return clampFinite(sigmaT) * clampFinite(distance);
 }
 
 export function transmittanceHomogeneous(sigmaT: number, distance: number): number {
@@ -26,11 +31,12 @@ export function opticalThicknessSine(
   s0: number,
   s1: number,
 ): number {
-  const sigma = Math.max(sigma0, 0);
+  const sigma = clampFinite(sigma0);
   const a = Math.min(Math.max(amplitude, 0), 1);
   if (s1 <= s0) return 0;
-  if (frequency <= 0) return sigma * (1 + a * Math.sin(phase)) * (s1 - s0);
-  const antiderivative = (s: number): number => s - (a / frequency) * Math.cos(frequency * s + phase);
+  if (frequency <= 0) return sigma * (1 + a * Math.sin(phase)) * clampFinite(s1 - s0);
+  const antiderivative = (s: number): number =>
+    s - (a / frequency) * Math.cos(frequency * s + phase);
   return Math.max(sigma * (antiderivative(s1) - antiderivative(s0)), 0);
 }
 

@@ -99,7 +99,10 @@ export function parseParameters(
 }
 
 /** Serializes values that differ from their defaults, for the URL hash. */
-export function encodeParameters(parameters: readonly Parameter[], values: ParameterValues): string {
+export function encodeParameters(
+  parameters: readonly Parameter[],
+  values: ParameterValues,
+): string {
   const search = new URLSearchParams();
   for (const parameter of parameters) {
     const value = values[parameter.name];

@@ -1,10 +1,19 @@
 // WGSL PCG stream vs its TypeScript twin: the u32 sequence must be identical
 // bit for bit, so a test can replay a pixel's random numbers on the CPU.
 import { describeShaderFunction } from '../support/shaderHarness.ts';
-import { pcgAdvance, pcgHash, pcgOutput, rngNextFloat, rngSeed, u32ToUnitFloat } from '../../src/reference/rng.ts';
+import {
+  pcgAdvance,
+  pcgHash,
+  pcgOutput,
+  rngNextFloat,
+  rngSeed,
+  u32ToUnitFloat,
+} from '../../src/reference/rng.ts';
 import { ONE_MINUS_EPSILON_F32 } from '../support/f32.ts';
 
-const WORDS = [0, 1, 2, 3, 42, 0x7fffffff, 0x80000000, 0xdeadbeef, 0xfffffffe, 0xffffffff, 123456789, 2891336453];
+const WORDS = [
+  0, 1, 2, 3, 42, 0x7fffffff, 0x80000000, 0xdeadbeef, 0xfffffffe, 0xffffffff, 123456789, 2891336453,
+];
 const exact = { ulps: 0, reason: 'integer arithmetic and an exact power-of-two scaling' };
 
 for (const [fn, twin] of [
@@ -36,7 +45,10 @@ describeShaderFunction({
     [0, 1],
     [640 * 480 - 1, 7],
     [0xffffffff, 0xffffffff],
-  ].map(([pixel, frame]) => ({ name: `pixel ${pixel}, frame ${frame}`, args: [pixel ?? 0, frame ?? 0] })),
+  ].map(([pixel, frame]) => ({
+    name: `pixel ${pixel}, frame ${frame}`,
+    args: [pixel ?? 0, frame ?? 0],
+  })),
 });
 
 describeShaderFunction({
@@ -48,7 +60,11 @@ describeShaderFunction({
   tolerance: exact,
   cases: [
     { name: '0 maps to 0', args: [0], expected: 0 },
-    { name: '0xFFFFFFFF maps to 1 − 2^-24, never 1 (hard case 16)', args: [0xffffffff], expected: ONE_MINUS_EPSILON_F32 },
+    {
+      name: '0xFFFFFFFF maps to 1 − 2^-24, never 1 (hard case 16)',
+      args: [0xffffffff],
+      expected: ONE_MINUS_EPSILON_F32,
+    },
     { name: 'low 8 bits are dropped', args: [0xff], expected: 0 },
     { name: '2^31 maps to 0.5', args: [0x80000000], expected: 0.5 },
   ],

@@ -16,11 +16,13 @@ async function createDevice(): Promise<GPUDevice> {
   const adapter = await gpu.requestAdapter();
   if (!adapter) {
     throw new Error(
-      'Dawn found no WebGPU adapter. Install Debian\'s chromium (it ships SwiftShader) and run the tests ' +
+      "Dawn found no WebGPU adapter. Install Debian's chromium (it ships SwiftShader) and run the tests " +
         'through `npm test`, which sets VK_ICD_FILENAMES=/usr/lib/chromium/vk_swiftshader_icd.json.',
     );
   }
-  const features: GPUFeatureName[] = adapter.features.has('timestamp-query') ? ['timestamp-query'] : [];
+  const features: GPUFeatureName[] = adapter.features.has('timestamp-query')
+    ? ['timestamp-query']
+    : [];
   const device = await adapter.requestDevice({ requiredFeatures: features });
   device.addEventListener('uncapturederror', (event) => {
     throw new Error(`uncaptured WebGPU error: ${(event as GPUUncapturedErrorEvent).error.message}`);

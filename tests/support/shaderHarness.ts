@@ -101,11 +101,14 @@ export function generateKernel(table: ShaderFunctionTable, caseCount: number): s
   table.args.forEach((type, index) => {
     if (type === 'f32') lines.push(`  let a${index} = bitcast<f32>(inputs[base + ${offset}u]);`);
     else if (type === 'u32') lines.push(`  let a${index} = inputs[base + ${offset}u];`);
-    else if (type === 'i32') lines.push(`  let a${index} = bitcast<i32>(inputs[base + ${offset}u]);`);
+    else if (type === 'i32')
+      lines.push(`  let a${index} = bitcast<i32>(inputs[base + ${offset}u]);`);
     else {
       const n = argumentWords(type);
       lines.push(`  var a${index}: array<f32, ${n}>;`);
-      lines.push(`  for (var k = 0u; k < ${n}u; k++) { a${index}[k] = bitcast<f32>(inputs[base + ${offset}u + k]); }`);
+      lines.push(
+        `  for (var k = 0u; k < ${n}u; k++) { a${index}[k] = bitcast<f32>(inputs[base + ${offset}u + k]); }`,
+      );
     }
     offset += argumentWords(type);
   });
@@ -117,7 +120,10 @@ export function generateKernel(table: ShaderFunctionTable, caseCount: number): s
       ? ['  outputs[i] = r;']
       : table.result === 'i32' || table.result === 'f32'
         ? ['  outputs[i] = bitcast<u32>(r);']
-        : Array.from({ length: words }, (_, k) => `  outputs[i * ${words}u + ${k}u] = bitcast<u32>(r[${k}]);`);
+        : Array.from(
+            { length: words },
+            (_, k) => `  outputs[i * ${words}u + ${k}u] = bitcast<u32>(r[${k}]);`,
+          );
   const imports = table.wrapper ? table.wrapper.imports : [table.fn];
   return [
     ...imports.map((name) => `import package::${table.module.replace(/\//g, '::')}::${name};`),
@@ -150,7 +156,9 @@ export async function evaluateTable(table: ShaderFunctionTable): Promise<CaseOut
   const inputs = new Uint32Array(table.cases.length * stride);
   table.cases.forEach((testCase, caseIndex) => {
     if (testCase.args.length !== table.args.length) {
-      throw new Error(`${table.fn} case "${testCase.name}" has ${testCase.args.length} arguments, expected ${table.args.length}`);
+      throw new Error(
+        `${table.fn} case "${testCase.name}" has ${testCase.args.length} arguments, expected ${table.args.length}`,
+      );
     }
     let offset = caseIndex * stride;
     table.args.forEach((type, index) => {
@@ -173,8 +181,15 @@ export async function evaluateTable(table: ShaderFunctionTable): Promise<CaseOut
   });
   return table.cases.map((testCase, caseIndex) => {
     const raw = Array.from(output.slice(caseIndex * words, caseIndex * words + words));
-    const gpu = table.result === 'u32' ? raw : table.result === 'i32' ? raw.map((w) => w | 0) : raw.map(bitsToF32);
-    const args = testCase.args.map((value, index) => asGpuSees(table.args[index] as ArgumentType, value));
+    const gpu =
+      table.result === 'u32'
+        ? raw
+        : table.result === 'i32'
+          ? raw.map((w) => w | 0)
+          : raw.map(bitsToF32);
+    const args = testCase.args.map((value, index) =>
+      asGpuSees(table.args[index] as ArgumentType, value),
+    );
     const twinValue = (table.twin as (...a: Argument[]) => number | readonly number[])(...args);
     const twin = typeof twinValue === 'number' ? [twinValue] : [...twinValue];
     return { gpu, twin };
@@ -185,7 +200,8 @@ export function withinTolerance(actual: number, reference: number, tolerance: To
   if (actual === reference) return true;
   const difference = Math.abs(actual - reference);
   if (tolerance.absolute !== undefined && difference <= tolerance.absolute) return true;
-  if (tolerance.relative !== undefined && difference <= tolerance.relative * Math.abs(reference)) return true;
+  if (tolerance.relative !== undefined && difference <= tolerance.relative * Math.abs(reference))
+    return true;
   if (tolerance.ulps !== undefined && ulpDistance(actual, reference) <= tolerance.ulps) return true;
   return false;
 }
@@ -226,10 +242,17 @@ export function describeShaderFunction(table: ShaderFunctionTable): void {
           ).toBe(true);
         });
         if (testCase.expected !== undefined) {
-          const expected = typeof testCase.expected === 'number' ? [testCase.expected] : testCase.expected;
+          const expected =
+            typeof testCase.expected === 'number' ? [testCase.expected] : testCase.expected;
           expected.forEach((value, k) => {
-            expect(withinTolerance(outcome.gpu[k] ?? NaN, value, tolerance), `GPU vs published ${value}`).toBe(true);
-            expect(withinTolerance(outcome.twin[k] ?? NaN, value, tolerance), `twin vs published ${value}`).toBe(true);
+            expect(
+              withinTolerance(outcome.gpu[k] ?? NaN, value, tolerance),
+              `GPU vs published ${value}`,
+            ).toBe(true);
+            expect(
+              withinTolerance(outcome.twin[k] ?? NaN, value, tolerance),
+              `twin vs published ${value}`,
+            ).toBe(true);
           });
         }
       });

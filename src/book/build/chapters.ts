@@ -58,7 +58,8 @@ export function loadChapters(directory: string): ChapterSource[] {
   const seen = new Map<number, string>();
   for (const chapter of chapters) {
     const other = seen.get(chapter.number);
-    if (other) throw new Error(`chapters ${other} and ${chapter.slug} share number ${chapter.number}`);
+    if (other)
+      throw new Error(`chapters ${other} and ${chapter.slug} share number ${chapter.number}`);
     seen.set(chapter.number, chapter.slug);
   }
   return chapters;

@@ -33,11 +33,19 @@ export function buildBook(root: string): Book {
   const rendered = new Map<string, RenderedChapter>();
   const equations = new Map<string, EquationLabel>();
   for (const chapter of chapters) {
-    const result = renderChapterBody(md, chapter.body, chapter.number, chapterPath(chapter), chapter.file);
+    const result = renderChapterBody(
+      md,
+      chapter.body,
+      chapter.number,
+      chapterPath(chapter),
+      chapter.file,
+    );
     for (const equation of result.equations) {
       const existing = equations.get(equation.label);
       if (existing) {
-        throw new Error(`${chapter.file}: equation label "${equation.label}" is also defined on ${existing.page}`);
+        throw new Error(
+          `${chapter.file}: equation label "${equation.label}" is also defined on ${existing.page}`,
+        );
       }
       equations.set(equation.label, equation);
     }
@@ -47,7 +55,12 @@ export function buildBook(root: string): Book {
   chapters.forEach((chapter, index) => {
     const result = rendered.get(chapter.slug);
     if (!result) return;
-    const html = resolveEquationReferences(result.html, equations, chapterPath(chapter), chapter.file);
+    const html = resolveEquationReferences(
+      result.html,
+      equations,
+      chapterPath(chapter),
+      chapter.file,
+    );
     pages.push({
       file: `chapters/${chapter.slug}.html`,
       html: renderChapterPage(chapter, html, result.toc, chapters[index - 1], chapters[index + 1]),

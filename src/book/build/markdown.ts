@@ -130,7 +130,8 @@ export function createMarkdown(): MarkdownIt {
   const defaultFence = md.renderer.rules.fence;
   md.renderer.rules.fence = (tokens, index, options, env, self) => {
     const token = tokens[index];
-    if (token && token.info.trim() === 'quiz') return renderQuiz(md, token.content, env as RenderEnv);
+    if (token && token.info.trim() === 'quiz')
+      return renderQuiz(md, token.content, env as RenderEnv);
     return defaultFence ? defaultFence(tokens, index, options, env, self) : '';
   };
 
@@ -171,7 +172,9 @@ export function renderChapterBody(
   html = html.replace(/<(sb-[a-z0-9-]+)([^>]*)>\s*<\/\1>/g, (_all, tag: string, attrs: string) => {
     const name = tag.slice(3);
     if (!WIDGET_CATALOG[name]) {
-      throw new Error(`${file}: unknown widget <${tag}>; known: ${Object.keys(WIDGET_CATALOG).join(', ')}`);
+      throw new Error(
+        `${file}: unknown widget <${tag}>; known: ${Object.keys(WIDGET_CATALOG).join(', ')}`,
+      );
     }
     widgets.push(name);
     return `<${tag}${attrs}>${widgetFallback(name)}</${tag}>`;
@@ -180,7 +183,7 @@ export function renderChapterBody(
 }
 
 /**
- * Replaces each empty link to an equation, `[](#eq:name)`, with its number and a
+ * Replaces each empty link to an equation, `[](#eq:NAME)`, with its number and a
  * link to its page. An unknown label is an error: a chapter may not cite an
  * equation that does not exist.
  */

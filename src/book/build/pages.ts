@@ -13,7 +13,11 @@ export function chapterPath(chapter: Pick<ChapterSource, 'slug'>): string {
 }
 
 function escapeHtml(text: string): string {
-  return text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;');
+  return text
+    .replace(/&/g, '&amp;')
+    .replace(/</g, '&lt;')
+    .replace(/>/g, '&gt;')
+    .replace(/"/g, '&quot;');
 }
 
 function shell(title: string, description: string, body: string): string {
@@ -24,6 +28,7 @@ function shell(title: string, description: string, body: string): string {
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <meta name="description" content="${escapeHtml(description)}">
 <title>${escapeHtml(title)}</title>
+<link rel="icon" href="/favicon.svg" type="image/svg+xml">
 <link rel="stylesheet" href="/src/book/styles/book.css">
 <script type="module" src="/src/book/main.ts"></script>
 </head>
@@ -67,7 +72,10 @@ ${items}
 function renderToc(toc: readonly TocEntry[]): string {
   if (toc.length === 0) return '';
   const items = toc
-    .map((entry) => `<li class="toc-level-${entry.level}"><a href="#${entry.id}">${escapeHtml(entry.text)}</a></li>`)
+    .map(
+      (entry) =>
+        `<li class="toc-level-${entry.level}"><a href="#${entry.id}">${escapeHtml(entry.text)}</a></li>`,
+    )
     .join('');
   return `<nav class="toc" aria-label="On this page"><p class="toc-title">On this page</p><ol>${items}</ol></nav>`;
 }

@@ -23,7 +23,8 @@ export function parseQuiz(source: string, where: string): Quiz {
     const marker = line[0];
     const rest = line.slice(1).trim();
     if (marker === '?') question = question ? `${question} ${rest}` : rest;
-    else if (marker === '+' || marker === '-') options.push({ text: rest, correct: marker === '+' });
+    else if (marker === '+' || marker === '-')
+      options.push({ text: rest, correct: marker === '+' });
     else if (marker === '>') explanation.push(line.slice(1).replace(/^ /, ''));
     else throw new Error(`${where}: quiz line must start with ?, +, - or >: "${line}"`);
   }

@@ -54,7 +54,8 @@ export const BEER_LAW: WidgetEntry = {
         { value: 'layered', label: 'Layered (piecewise constant)' },
       ],
       default: 'homogeneous',
-      description: 'How extinction varies along the beam; all three have the same mean coefficients.',
+      description:
+        'How extinction varies along the beam; all three have the same mean coefficients.',
     },
     {
       kind: 'number',

@@ -1,0 +1,39 @@
+// End-to-end tests in Debian's Chromium: WebGPU through SwiftShader for the main
+// project, and WebGPU switched off for the CPU-fallback project. The book is
+// served from the production build (`vite build`, then `vite preview`).
+import { defineConfig } from '@playwright/test';
+import { CHROMIUM_PATH, NO_WEBGPU_ARGS, WEBGPU_ARGS } from './scripts/chromium.mjs';
+
+const PORT = Number(process.env['E2E_PORT'] ?? 4173);
+
+export default defineConfig({
+  testDir: 'tests/e2e',
+  timeout: 60_000,
+  expect: { timeout: 15_000 },
+  fullyParallel: false,
+  workers: 1,
+  retries: 0,
+  reporter: [['list'], ['json', { outputFile: 'test-results/playwright.json' }]],
+  use: {
+    baseURL: `http://localhost:${PORT}`,
+    viewport: { width: 1280, height: 900 },
+  },
+  projects: [
+    {
+      name: 'webgpu',
+      testIgnore: /fallback\.spec\.ts/,
+      use: { launchOptions: { executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS } },
+    },
+    {
+      name: 'no-webgpu',
+      testMatch: /fallback\.spec\.ts/,
+      use: { launchOptions: { executablePath: CHROMIUM_PATH, args: NO_WEBGPU_ARGS } },
+    },
+  ],
+  webServer: {
+    command: `npx vite preview --port ${PORT} --strictPort`,
+    url: `http://localhost:${PORT}/index.html`,
+    reuseExistingServer: !process.env['CI'],
+    timeout: 60_000,
+  },
+});

@@ -1,0 +1,51 @@
+// The script of every page: theme switch, quiz checking, and the widgets the page
+// embeds (each loaded on demand, each isolated so that one failing widget never
+// takes down the page).
+import { setupThemeToggle } from './theme.ts';
+import { setupQuizzes } from './quiz.ts';
+import { WIDGET_LOADERS } from '../widgets/loaders.ts';
+
+async function loadWidgets(): Promise<void> {
+  await Promise.all(
+    Object.entries(WIDGET_LOADERS).map(async ([name, load]) => {
+      const elements = document.querySelectorAll(`sb-${name}`);
+      if (elements.length === 0) return;
+      try {
+        const module = await load();
+        module.define();
+      } catch (error) {
+        for (const element of elements) {
+          const message = document.createElement('p');
+          message.className = 'sb-notice sb-notice--error';
+          message.setAttribute('role', 'alert');
+          message.textContent = `This figure could not be loaded: ${error instanceof Error ? error.message : String(error)}`;
+          element.replaceChildren(message);
+        }
+      }
+    }),
+  );
+}
+
+/**
+ * A region that scrolls sideways (a wide equation, a long code line) must be
+ * reachable by keyboard (WCAG 2.1.1); only those that actually overflow get a tab stop.
+ */
+function makeScrollableRegionsFocusable(): void {
+  for (const region of document.querySelectorAll<HTMLElement>('.equation, pre')) {
+    if (region.scrollWidth > region.clientWidth + 1 && !region.hasAttribute('tabindex')) {
+      region.tabIndex = 0;
+      region.setAttribute('role', 'region');
+      region.setAttribute(
+        'aria-label',
+        region.classList.contains('equation')
+          ? 'Equation (scrolls sideways)'
+          : 'Code (scrolls sideways)',
+      );
+    }
+  }
+}
+
+setupThemeToggle();
+makeScrollableRegionsFocusable();
+setupQuizzes();
+void loadWidgets();

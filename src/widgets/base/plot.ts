@@ -1,0 +1,95 @@
+// Line plots through uPlot (a charting library, not hand-drawn axes). One helper
+// so every widget's plots look alike and follow the page's theme.
+import uPlot from 'uplot';
+import 'uplot/dist/uPlot.min.css';
+
+export interface PlotSeries {
+  label: string;
+  color: string;
+  dash?: number[];
+  values: ArrayLike<number>;
+}
+
+export interface LinePlotOptions {
+  xLabel: string;
+  yLabel: string;
+  yRange?: [number, number];
+  height?: number;
+}
+
+export class LinePlot {
+  private plot: uPlot | null = null;
+  private signature = '';
+  private readonly resizeObserver: ResizeObserver;
+  private readonly themeObserver: MutationObserver;
+  private lastData: { x: ArrayLike<number>; series: readonly PlotSeries[] } | null = null;
+
+  constructor(
+    private readonly container: HTMLElement,
+    private readonly options: LinePlotOptions,
+  ) {
+    this.resizeObserver = new ResizeObserver(() => {
+      if (this.plot) this.plot.setSize({ width: this.width(), height: this.options.height ?? 220 });
+    });
+    this.resizeObserver.observe(container);
+    // Axis colours are baked into the chart: rebuild it when the theme changes.
+    this.themeObserver = new MutationObserver(() => {
+      this.signature = '';
+      if (this.lastData) this.update(this.lastData.x, this.lastData.series);
+    });
+    this.themeObserver.observe(document.documentElement, {
+      attributes: true,
+      attributeFilter: ['data-theme'],
+    });
+  }
+
+  private width(): number {
+    return Math.max(240, Math.floor(this.container.clientWidth || 480));
+  }
+
+  /** Draws x against the series; rebuilds the chart only when the series change. */
+  update(x: ArrayLike<number>, series: readonly PlotSeries[]): void {
+    this.lastData = { x, series };
+    const data = [Array.from(x), ...series.map((s) => Array.from(s.values))] as uPlot.AlignedData;
+    const signature = series.map((s) => `${s.label}|${s.color}`).join(';');
+    if (this.plot && signature === this.signature) {
+      this.plot.setData(data);
+      return;
+    }
+    this.plot?.destroy();
+    this.signature = signature;
+    // The resolved text colour of the container (theme colours are light-dark() pairs).
+    const stroke = getComputedStyle(this.container).color || '#555';
+    const axis = (label: string): uPlot.Axis => ({
+      label,
+      stroke,
+      grid: { stroke: 'rgba(128,128,128,0.2)', width: 1 },
+      ticks: { stroke: 'rgba(128,128,128,0.4)', width: 1 },
+    });
+    this.plot = new uPlot(
+      {
+        width: this.width(),
+        height: this.options.height ?? 220,
+        scales: {
+          x: { time: false },
+          y: this.options.yRange ? { range: this.options.yRange } : {},
+        },
+        axes: [axis(this.options.xLabel), axis(this.options.yLabel)],
+        series: [
+          { label: this.options.xLabel },
+          ...series.map((s) => ({ label: s.label, stroke: s.color, width: 2, dash: s.dash ?? [] })),
+        ],
+        cursor: { drag: { x: false, y: false } },
+      },
+      data,
+      this.container,
+    );
+  }
+
+  destroy(): void {
+    this.resizeObserver.disconnect();
+    this.themeObserver.disconnect();
+    this.plot?.destroy();
+    this.plot = null;
+  }
+}

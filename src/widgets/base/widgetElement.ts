@@ -1,0 +1,347 @@
+// The shared shell of every widget (DESIGN.md contract 2): a custom element whose
+// attributes are its parameters (clamped and reported when invalid), labelled
+// form controls generated from the parameter schema, state in the URL hash,
+// presentation mode (key F or the button, Esc to leave, number keys for presets),
+// visible notices, and rendering only while on screen. A failure inside a widget
+// is shown inside it and never escapes to the page.
+import {
+  encodeParameters,
+  parseParameters,
+  type NumberParameter,
+  type ChoiceParameter,
+  type ParameterValues,
+  type WidgetEntry,
+} from '../parameters.ts';
+import { readWidgetState, widgetLink, writeWidgetState } from './urlState.ts';
+
+export interface Preset {
+  label: string;
+  values: ParameterValues;
+}
+
+export type NoticeKind = 'info' | 'warning' | 'error';
+
+let instanceCounter = 0;
+
+export abstract class WidgetElement extends HTMLElement {
+  /** The widget's schema; set by each subclass. */
+  protected abstract readonly entry: WidgetEntry;
+  /** Presets recalled by the number keys 1–9. */
+  protected presets: readonly Preset[] = [];
+
+  protected values: ParameterValues = {};
+  private initialValues: ParameterValues = {};
+  private root: HTMLElement | null = null;
+  private noticeArea: HTMLElement | null = null;
+  private readonly notices = new Map<string, HTMLElement>();
+  private readonly controlInputs = new Map<string, HTMLInputElement[] | HTMLSelectElement>();
+  private visible = false;
+  private dirty = true;
+  private rendering = false;
+  private frameRequested = false;
+  private observer: IntersectionObserver | null = null;
+  private presentButton: HTMLButtonElement | null = null;
+  protected widgetId = '';
+
+  /** Builds the widget's own drawing area (canvas, plot) inside the stage. */
+  protected abstract buildStage(stage: HTMLElement): void;
+  /** Builds the readout area (numbers, costs) under the controls. */
+  protected abstract buildReadout(readout: HTMLElement): void;
+  /** Draws the current `values`. May be async (GPU work); errors are caught and shown. */
+  protected abstract render(): Promise<void> | void;
+
+  connectedCallback(): void {
+    if (this.root) return;
+    instanceCounter += 1;
+    const sameKind = [...document.querySelectorAll(this.localName)].indexOf(this) + 1;
+    this.widgetId = this.id || `${this.entry.name}-${sameKind > 0 ? sameKind : instanceCounter}`;
+    const attributes = parseParameters(this.entry.parameters, (name) => this.getAttribute(name));
+    this.initialValues = { ...attributes.values };
+    const fromUrl = readWidgetState(this.widgetId);
+    const merged = parseParameters(
+      this.entry.parameters,
+      (name) => fromUrl.get(name) ?? this.getAttribute(name),
+    );
+    this.values = merged.values;
+
+    try {
+      this.buildShell();
+    } catch (error) {
+      this.textContent = `This figure could not be built: ${String(error)}`;
+      return;
+    }
+    for (const warning of new Set([...attributes.warnings, ...merged.warnings])) {
+      this.showNotice(`param:${warning}`, 'warning', warning);
+    }
+    if (fromUrl.get('present') === '1') this.setPresenting(true);
+
+    this.observer = new IntersectionObserver((entries) => {
+      this.visible = entries.some((entry) => entry.isIntersecting);
+      if (this.visible && this.dirty) this.scheduleRender();
+    });
+    this.observer.observe(this);
+  }
+
+  disconnectedCallback(): void {
+    this.observer?.disconnect();
+    this.observer = null;
+  }
+
+  private buildShell(): void {
+    this.replaceChildren();
+    const root = document.createElement('section');
+    root.className = 'sb-widget';
+    const titleId = `${this.widgetId}-title`;
+    root.setAttribute('aria-labelledby', titleId);
+    root.innerHTML = `
+      <div class="sb-widget-header">
+        <p class="sb-widget-title" id="${titleId}"></p>
+        <div class="sb-widget-tools">
+          <button type="button" class="sb-button" data-action="present" aria-pressed="false"
+            title="Presentation mode (F); Esc leaves it">Present</button>
+          <button type="button" class="sb-button" data-action="link"
+            title="Copy a link that restores this figure exactly">Copy link</button>
+        </div>
+      </div>
+      <div class="sb-notices"></div>
+      <div class="sb-widget-body">
+        <div class="sb-stage"></div>
+        <div class="sb-side">
+          <form class="sb-controls" aria-label="Parameters"></form>
+          <div class="sb-readout-area"></div>
+        </div>
+      </div>`;
+    const title = root.querySelector('.sb-widget-title');
+    if (title) title.textContent = this.entry.title;
+    this.appendChild(root);
+    this.root = root;
+    this.noticeArea = root.querySelector('.sb-notices');
+    this.presentButton = root.querySelector('[data-action="present"]');
+    this.presentButton?.addEventListener('click', () => this.setPresenting(!this.isPresenting()));
+    root
+      .querySelector('[data-action="link"]')
+      ?.addEventListener('click', () => void this.copyLink());
+
+    const controls = root.querySelector<HTMLFormElement>('.sb-controls');
+    if (controls) {
+      controls.addEventListener('submit', (event) => event.preventDefault());
+      for (const parameter of this.entry.parameters)
+        controls.appendChild(this.buildControl(parameter));
+      if (this.presets.length > 0) controls.appendChild(this.buildPresetHint());
+    }
+    const stage = root.querySelector<HTMLElement>('.sb-stage');
+    if (stage) this.buildStage(stage);
+    const readout = root.querySelector<HTMLElement>('.sb-readout-area');
+    if (readout) this.buildReadout(readout);
+    this.addEventListener('keydown', (event) => this.onKey(event));
+  }
+
+  private buildControl(parameter: NumberParameter | ChoiceParameter): HTMLElement {
+    const wrapper = document.createElement('div');
+    wrapper.className = 'sb-control';
+    const id = `${this.widgetId}-${parameter.name}`;
+    const label = document.createElement('label');
+    label.htmlFor = id;
+    label.textContent = parameter.label;
+    label.title = parameter.description;
+    if (parameter.kind === 'number' && parameter.unit) {
+      const unit = document.createElement('span');
+      unit.className = 'sb-unit';
+      unit.textContent = ` (${parameter.unit})`;
+      label.appendChild(unit);
+    }
+    wrapper.appendChild(label);
+    if (parameter.kind === 'choice') {
+      const select = document.createElement('select');
+      select.id = id;
+      select.name = parameter.name;
+      for (const choice of parameter.choices) {
+        const option = document.createElement('option');
+        option.value = choice.value;
+        option.textContent = choice.label;
+        select.appendChild(option);
+      }
+      select.value = String(this.values[parameter.name]);
+      select.addEventListener('change', () => this.setValue(parameter.name, select.value));
+      wrapper.appendChild(select);
+      this.controlInputs.set(parameter.name, select);
+      return wrapper;
+    }
+    const row = document.createElement('div');
+    row.className = 'sb-control-row';
+    const range = document.createElement('input');
+    range.type = 'range';
+    range.id = id;
+    const number = document.createElement('input');
+    number.type = 'number';
+    number.setAttribute('aria-label', `${parameter.label} in ${parameter.unit || 'units'}`);
+    for (const input of [range, number]) {
+      input.name = parameter.name;
+      input.min = String(parameter.min);
+      input.max = String(parameter.max);
+      input.step = String(parameter.step);
+      input.value = String(this.values[parameter.name]);
+      row.appendChild(input);
+    }
+    range.addEventListener('input', () => this.setValue(parameter.name, range.value));
+    number.addEventListener('change', () => this.setValue(parameter.name, number.value));
+    wrapper.appendChild(row);
+    this.controlInputs.set(parameter.name, [range, number]);
+    return wrapper;
+  }
+
+  private buildPresetHint(): HTMLElement {
+    const hint = document.createElement('p');
+    hint.className = 'sb-preset-hint';
+    hint.textContent = `Keys 1–${this.presets.length}: ${this.presets.map((p, i) => `${i + 1} ${p.label}`).join(' · ')}`;
+    return hint;
+  }
+
+  /** Sets one parameter from user input: validated, clamped and reported like an attribute. */
+  protected setValue(name: string, raw: string): void {
+    const parameter = this.entry.parameters.find((p) => p.name === name);
+    if (!parameter) return;
+    const parsed = parseParameters([parameter], () => raw);
+    this.values = { ...this.values, ...parsed.values };
+    const noticeKey = `input:${name}`;
+    const warning = parsed.warnings[0];
+    if (warning) this.showNotice(noticeKey, 'warning', warning);
+    else this.clearNotice(noticeKey);
+    this.syncControls();
+    this.saveState();
+    this.scheduleRender();
+  }
+
+  protected applyPreset(index: number): void {
+    const preset = this.presets[index];
+    if (!preset) return;
+    this.values = { ...this.initialValues, ...preset.values };
+    this.syncControls();
+    this.saveState();
+    this.scheduleRender();
+  }
+
+  private syncControls(): void {
+    for (const [name, inputs] of this.controlInputs) {
+      const value = String(this.values[name]);
+      if (inputs instanceof HTMLSelectElement) inputs.value = value;
+      else for (const input of inputs) if (input.value !== value) input.value = value;
+    }
+  }
+
+  private stateEntries(): [string, string][] {
+    const entries = [...new URLSearchParams(encodeParameters(this.entry.parameters, this.values))];
+    // Encode relative to the element's attributes, not the schema defaults.
+    const changed = entries.filter(([key, value]) => String(this.initialValues[key]) !== value);
+    for (const parameter of this.entry.parameters) {
+      const value = this.values[parameter.name];
+      if (value === parameter.default && value !== this.initialValues[parameter.name]) {
+        changed.push([parameter.name, String(value)]);
+      }
+    }
+    if (this.isPresenting()) changed.push(['present', '1']);
+    return changed;
+  }
+
+  private saveState(): void {
+    writeWidgetState(this.widgetId, this.stateEntries());
+  }
+
+  private async copyLink(): Promise<void> {
+    const link = widgetLink(this.widgetId, this.stateEntries());
+    try {
+      await navigator.clipboard.writeText(link);
+      this.showNotice('link', 'info', 'Link copied: it restores this figure exactly.', 4000);
+    } catch {
+      this.showNotice('link', 'info', `Copy this link: ${link}`);
+    }
+  }
+
+  isPresenting(): boolean {
+    return this.root?.classList.contains('is-presenting') ?? false;
+  }
+
+  setPresenting(on: boolean): void {
+    if (!this.root) return;
+    this.root.classList.toggle('is-presenting', on);
+    this.presentButton?.setAttribute('aria-pressed', String(on));
+    if (this.presentButton) this.presentButton.textContent = on ? 'Exit presentation' : 'Present';
+    document.documentElement.classList.toggle('sb-presenting', on);
+    if (on) {
+      this.root.tabIndex = -1;
+      this.root.focus({ preventScroll: true });
+      // Full screen where the browser allows it; the fixed overlay works without.
+      this.root.requestFullscreen?.().catch(() => undefined);
+    } else if (document.fullscreenElement) {
+      void document.exitFullscreen().catch(() => undefined);
+    }
+    this.saveState();
+    this.scheduleRender();
+  }
+
+  private onKey(event: KeyboardEvent): void {
+    if (event.ctrlKey || event.metaKey || event.altKey) return;
+    const target = event.target as HTMLElement | null;
+    const typing = target instanceof HTMLInputElement && target.type === 'number';
+    if (event.key === 'Escape' && this.isPresenting()) {
+      this.setPresenting(false);
+      event.preventDefault();
+    } else if (!typing && (event.key === 'f' || event.key === 'F')) {
+      this.setPresenting(!this.isPresenting());
+      event.preventDefault();
+    } else if (!typing && /^[1-9]$/.test(event.key) && Number(event.key) <= this.presets.length) {
+      this.applyPreset(Number(event.key) - 1);
+      event.preventDefault();
+    }
+  }
+
+  showNotice(key: string, kind: NoticeKind, message: string, timeoutMs?: number): void {
+    if (!this.noticeArea) return;
+    let notice = this.notices.get(key);
+    if (!notice) {
+      notice = document.createElement('p');
+      notice.setAttribute('role', kind === 'error' ? 'alert' : 'status');
+      this.noticeArea.appendChild(notice);
+      this.notices.set(key, notice);
+    }
+    notice.className = `sb-notice sb-notice--${kind}`;
+    notice.textContent = message;
+    if (timeoutMs) setTimeout(() => this.clearNotice(key), timeoutMs);
+  }
+
+  clearNotice(key: string): void {
+    this.notices.get(key)?.remove();
+    this.notices.delete(key);
+  }
+
+  /** Renders on the next frame if visible; otherwise when it scrolls into view. */
+  protected scheduleRender(): void {
+    this.dirty = true;
+    if (!this.visible || this.frameRequested) return;
+    this.frameRequested = true;
+    requestAnimationFrame(() => {
+      this.frameRequested = false;
+      void this.renderNow();
+    });
+  }
+
+  private async renderNow(): Promise<void> {
+    if (this.rendering) return;
+    this.rendering = true;
+    this.dirty = false;
+    try {
+      await this.render();
+      this.clearNotice('render-error');
+      this.dataset['rendered'] = String(Number(this.dataset['rendered'] ?? '0') + 1);
+    } catch (error) {
+      this.showNotice(
+        'render-error',
+        'error',
+        `This figure failed to draw: ${error instanceof Error ? error.message : String(error)}`,
+      );
+    } finally {
+      this.rendering = false;
+      if (this.dirty) this.scheduleRender();
+    }
+  }
+}

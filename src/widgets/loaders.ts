@@ -1,0 +1,8 @@
+// Maps each widget in the catalog to the module that defines its element, so a
+// page loads only the widgets it embeds.
+export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () => void }>>> = {
+  'beer-law': async () => {
+    const module = await import('./beer-law/element.ts');
+    return { define: module.defineBeerLaw };
+  },
+};

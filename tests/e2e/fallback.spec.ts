@@ -1,0 +1,35 @@
+// With WebGPU switched off, widgets fall back to the float64 CPU reference, say
+// so, and still draw and compute the right numbers.
+import { expect, test } from '@playwright/test';
+import {
+  canvasStats,
+  chapterPages,
+  parseDisplayed,
+  trackErrors,
+  waitForRender,
+} from './support.ts';
+
+test('every widget falls back to the CPU with a visible notice', async ({ page }) => {
+  for (const chapter of chapterPages()) {
+    const errors = trackErrors(page);
+    await page.goto(chapter.path);
+    for (const widget of await page.locator('sb-beer-law').all()) {
+      await waitForRender(widget);
+      await expect(widget.locator('.sb-notice--warning')).toContainText('WebGPU is not available');
+      const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+      expect(stats.luminanceDeviation).toBeGreaterThan(10);
+      await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
+    }
+    expect(errors).toEqual([]);
+  }
+});
+
+test("the CPU fallback computes Beer's law", async ({ page }) => {
+  await page.goto(
+    '/chapters/02-extinction-and-transmittance.html#beer-law-1.sigma-a=0.5&beer-law-1.sigma-s=0.5&beer-law-1.thickness=2&beer-law-1.profile=homogeneous',
+  );
+  const widget = page.locator('sb-beer-law').first();
+  await waitForRender(widget);
+  const shown = parseDisplayed((await widget.locator('[data-readout="exit"]').textContent()) ?? '');
+  expect(shown).toBeCloseTo(Math.exp(-2), 6);
+});

@@ -1,0 +1,92 @@
+// Shared helpers of the end-to-end tests.
+import { readdirSync, readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { expect, type Locator, type Page } from '@playwright/test';
+import { PNG } from 'pngjs';
+
+const CHAPTERS = fileURLToPath(new URL('../../chapters', import.meta.url));
+
+/** Every chapter page, from the Markdown sources (the build makes one page each). */
+export function chapterPages(): { slug: string; path: string; hasMath: boolean }[] {
+  return readdirSync(CHAPTERS)
+    .filter((name) => /^\d{2}-.*\.md$/.test(name))
+    .sort()
+    .map((name) => {
+      const slug = name.replace(/\.md$/, '');
+      const source = readFileSync(`${CHAPTERS}/${name}`, 'utf8');
+      return { slug, path: `/chapters/${slug}.html`, hasMath: source.includes('$') };
+    });
+}
+
+/** Collects console errors and uncaught exceptions of a page from now on. */
+export function trackErrors(page: Page): string[] {
+  const errors: string[] = [];
+  page.on('console', (message) => {
+    if (message.type() === 'error') errors.push(`console: ${message.text()}`);
+  });
+  page.on('pageerror', (error) => errors.push(`pageerror: ${error.message}`));
+  return errors;
+}
+
+/** Scrolls a widget into view and waits until it has drawn at least `count` times. */
+export async function waitForRender(widget: Locator, count = 1): Promise<void> {
+  await widget.scrollIntoViewIfNeeded();
+  await expect
+    .poll(async () => Number((await widget.getAttribute('data-rendered')) ?? '0'), {
+      timeout: 30_000,
+    })
+    .toBeGreaterThanOrEqual(count);
+}
+
+export interface CanvasStats {
+  /** Standard deviation of luminance over the pixels (0–255). */
+  luminanceDeviation: number;
+  /** Number of distinct colours after quantizing to 5 bits per channel. */
+  distinctColours: number;
+  png: Buffer;
+}
+
+/** Screenshots an element and measures whether it shows a picture rather than a flat fill. */
+export async function canvasStats(canvas: Locator): Promise<CanvasStats> {
+  const png = await canvas.screenshot();
+  const image = PNG.sync.read(png);
+  let sum = 0;
+  let sumSquares = 0;
+  const colours = new Set<number>();
+  const pixels = image.width * image.height;
+  for (let i = 0; i < pixels; i++) {
+    const r = image.data[4 * i] ?? 0;
+    const g = image.data[4 * i + 1] ?? 0;
+    const b = image.data[4 * i + 2] ?? 0;
+    const luminance = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    sum += luminance;
+    sumSquares += luminance * luminance;
+    colours.add(((r >> 3) << 10) | ((g >> 3) << 5) | (b >> 3));
+  }
+  const mean = sum / pixels;
+  return {
+    luminanceDeviation: Math.sqrt(Math.max(sumSquares / pixels - mean * mean, 0)),
+    distinctColours: colours.size,
+    png,
+  };
+}
+
+/** Reads a number as the widgets print it (plain, or mantissa×10ⁿ). */
+export function parseDisplayed(text: string): number {
+  const superscripts = '⁰¹²³⁴⁵⁶⁷⁸⁹';
+  const match = /(-?[\d.]+)(?:×10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))?/.exec(text);
+  if (!match) throw new Error(`no number in "${text}"`);
+  const mantissa = Number(match[1]);
+  if (!match[2]) return mantissa;
+  const exponent = Number(
+    [...match[2]].map((c) => (c === '⁻' ? '-' : String(superscripts.indexOf(c)))).join(''),
+  );
+  return mantissa * 10 ** exponent;
+}
+
+/** Number of significant digits shown in a printed number, for "equal to the displayed digits". */
+export function displayedDigits(text: string): number {
+  const match = /(-?[\d.]+)/.exec(text);
+  const digits = (match?.[1] ?? '').replace('-', '').replace('.', '').replace(/^0+/, '');
+  return Math.max(digits.length, 1);
+}
