@@ -1,5 +1,5 @@
 // Takes full-page screenshots of book pages in headless Chromium, to look at what
-// a student sees:  node scripts/screenshot.mjs URL OUT.png [--dark] [--no-webgpu] [--width=1280] [--selector=CSS] [--viewport]
+// a student sees:  node scripts/screenshot.mjs URL OUT.png [--dark] [--no-webgpu] [--width=1280] [--selector=CSS] [--viewport] [--top]
 import { chromium } from 'playwright-core';
 import { CHROMIUM_PATH, NO_WEBGPU_ARGS, WEBGPU_ARGS } from './chromium.mjs';
 
@@ -34,6 +34,7 @@ for (const widget of await page.locator('[data-rendered], sb-beer-law').all()) {
     )
     .catch(() => console.log('widget did not render'));
 }
+if (flags.has('--top')) await page.evaluate(() => window.scrollTo(0, 0));
 const selector = [...flags].find((f) => f.startsWith('--selector='))?.slice('--selector='.length);
 if (selector) await page.locator(selector).first().screenshot({ path: out });
 else await page.screenshot({ path: out, fullPage: !flags.has('--viewport') });
