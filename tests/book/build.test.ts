@@ -13,6 +13,7 @@ import {
   resolveEquationReferences,
 } from '../../src/book/build/markdown.ts';
 import { parseQuiz } from '../../src/book/build/quiz.ts';
+import { loadShaderDocs, parseShaderModule } from '../../src/book/build/shaderDocs.ts';
 import { WIDGET_CATALOG } from '../../src/widgets/catalog.ts';
 import { parseParameters } from '../../src/widgets/parameters.ts';
 
@@ -24,10 +25,24 @@ function render(body: string) {
 }
 
 describe('the book builds', () => {
-  it('has a home page and one page per chapter, numbered from the file names', () => {
+  it('has a home page, one page per chapter numbered from the file names, and the library appendix', () => {
     expect(book.pages[0]?.file).toBe('index.html');
     expect(book.chapters.map((c) => c.number)).toEqual(book.chapters.map((_, i) => i + 1));
-    expect(book.pages).toHaveLength(book.chapters.length + 1);
+    expect(book.pages).toHaveLength(book.chapters.length + 2);
+    expect(book.pages[book.pages.length - 1]?.file).toBe('appendix/shader-library.html');
+  });
+
+  it('the appendix documents every library function from its doc comments', () => {
+    const appendix =
+      book.pages.find((page) => page.file === 'appendix/shader-library.html')?.html ?? '';
+    for (const module of loadShaderDocs(join(ROOT, 'shaders'))) {
+      for (const declaration of module.declarations.filter((d) => d.kind === 'fn')) {
+        expect(appendix, `${module.name}.${declaration.name}`).toContain(
+          `id="${module.name}-${declaration.name}"`,
+        );
+      }
+    }
+    expect(appendix).toContain('Beer');
   });
 
   it('typesets all math at build time: no $$ delimiters or \\label are left in the HTML (TeX survives only in MathML annotations)', () => {
@@ -167,5 +182,21 @@ describe('quizzes', () => {
     expect(html).toContain('data-correct');
     expect(html).toContain('<details class="quiz-explanation">');
     expect(html).toContain('class="katex"');
+  });
+});
+
+describe('shader doc comments', () => {
+  it('attach /// lines to the declaration right below them, and the leading // block to the module', () => {
+    const docs = parseShaderModule(
+      'm',
+      '// Module text.\n\n/// Doc of f.\n/// More.\nfn f(a: f32,\n  b: f32) -> f32 {\n  return a;\n}\n\nfn g() {}\n/// C.\nconst C: f32 = 1.0;\n',
+    );
+    expect(docs.description).toBe('Module text.');
+    expect(docs.declarations.map((d) => [d.kind, d.name, d.doc])).toEqual([
+      ['fn', 'f', 'Doc of f.\nMore.'],
+      ['fn', 'g', ''],
+      ['const', 'C', 'C.'],
+    ]);
+    expect(docs.declarations[0]?.signature).toBe('fn f(a: f32,\n  b: f32) -> f32');
   });
 });

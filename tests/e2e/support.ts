@@ -6,6 +6,18 @@ import { PNG } from 'pngjs';
 
 const CHAPTERS = fileURLToPath(new URL('../../chapters', import.meta.url));
 
+/** The generated appendix documenting the shader library. */
+export const APPENDIX_PAGE = {
+  slug: 'appendix-shader-library',
+  path: '/appendix/shader-library.html',
+  hasMath: true,
+};
+
+/** Every chapter page, then the appendix: the reading order of the pager links. */
+export function bookPages(): { slug: string; path: string; hasMath: boolean }[] {
+  return [...chapterPages(), APPENDIX_PAGE];
+}
+
 /** Every chapter page, from the Markdown sources (the build makes one page each). */
 export function chapterPages(): { slug: string; path: string; hasMath: boolean }[] {
   return readdirSync(CHAPTERS)

@@ -6,12 +6,21 @@ import { join } from 'node:path';
 import { loadChapters, type ChapterSource } from './chapters.ts';
 import {
   createMarkdown,
+  createRenderEnv,
   renderChapterBody,
   resolveEquationReferences,
   type EquationLabel,
   type RenderedChapter,
 } from './markdown.ts';
-import { chapterPath, renderChapterPage, renderHomePage } from './pages.ts';
+import {
+  chapterLink,
+  chapterPath,
+  renderArticlePage,
+  renderHomePage,
+  type PageLink,
+} from './pages.ts';
+import { APPENDIX_FILE, APPENDIX_SUMMARY, APPENDIX_TITLE, renderAppendix } from './appendix.ts';
+import { loadShaderDocs } from './shaderDocs.ts';
 
 export interface BookPage {
   /** Path relative to the project root, e.g. `chapters/02-extinction-and-transmittance.html`. */
@@ -51,7 +60,14 @@ export function buildBook(root: string): Book {
     }
     rendered.set(chapter.slug, result);
   }
-  const pages: BookPage[] = [{ file: 'index.html', html: renderHomePage(chapters), widgets: [] }];
+  const appendixLink: PageLink = { path: `/${APPENDIX_FILE}`, title: APPENDIX_TITLE };
+  const pages: BookPage[] = [
+    {
+      file: 'index.html',
+      html: renderHomePage(chapters, [{ ...appendixLink, summary: APPENDIX_SUMMARY }]),
+      widgets: [],
+    },
+  ];
   chapters.forEach((chapter, index) => {
     const result = rendered.get(chapter.slug);
     if (!result) return;
@@ -61,12 +77,45 @@ export function buildBook(root: string): Book {
       chapterPath(chapter),
       chapter.file,
     );
+    const previous = chapters[index - 1];
+    const next = chapters[index + 1];
     pages.push({
       file: `chapters/${chapter.slug}.html`,
-      html: renderChapterPage(chapter, html, result.toc, chapters[index - 1], chapters[index + 1]),
+      html: renderArticlePage({
+        kicker: `Chapter ${chapter.number}`,
+        title: chapter.title,
+        summary: chapter.summary,
+        html,
+        toc: result.toc,
+        previous: previous ? chapterLink(previous) : undefined,
+        next: next ? chapterLink(next) : appendixLink,
+      }),
       chapter,
       widgets: result.widgets,
     });
+  });
+  const last = chapters[chapters.length - 1];
+  const appendix = renderAppendix(
+    md,
+    loadShaderDocs(join(root, 'shaders')),
+    createRenderEnv('A', appendixLink.path, 'shaders/*.wesl'),
+  );
+  pages.push({
+    file: APPENDIX_FILE,
+    html: renderArticlePage({
+      kicker: 'Appendix',
+      title: APPENDIX_TITLE,
+      summary: APPENDIX_SUMMARY,
+      html: resolveEquationReferences(
+        appendix.html,
+        equations,
+        appendixLink.path,
+        'shaders/*.wesl',
+      ),
+      toc: appendix.toc,
+      previous: last ? chapterLink(last) : undefined,
+    }),
+    widgets: [],
   });
   return { chapters, pages, equations };
 }

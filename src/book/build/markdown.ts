@@ -29,8 +29,9 @@ export interface RenderedChapter {
   widgets: string[];
 }
 
-interface RenderEnv {
-  chapterNumber: number;
+export interface RenderEnv {
+  /** Prefix of equation numbers: the chapter number, or a letter for an appendix. */
+  chapterNumber: number | string;
   page: string;
   file: string;
   equations: EquationLabel[];
@@ -148,6 +149,14 @@ export function createMarkdown(): MarkdownIt {
   return md;
 }
 
+export function createRenderEnv(
+  chapterNumber: number | string,
+  page: string,
+  file: string,
+): RenderEnv {
+  return { chapterNumber, page, file, equations: [], quizCount: 0 };
+}
+
 /** Renders one chapter body. Equation references are resolved later, across chapters. */
 export function renderChapterBody(
   md: MarkdownIt,
@@ -156,7 +165,7 @@ export function renderChapterBody(
   page: string,
   file: string,
 ): RenderedChapter {
-  const env: RenderEnv = { chapterNumber, page, file, equations: [], quizCount: 0 };
+  const env = createRenderEnv(chapterNumber, page, file);
   const tokens = md.parse(body, env);
   const toc: TocEntry[] = [];
   tokens.forEach((token, index) => {

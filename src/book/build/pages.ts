@@ -48,7 +48,10 @@ ${body}
 `;
 }
 
-export function renderHomePage(chapters: readonly ChapterSource[]): string {
+export function renderHomePage(
+  chapters: readonly ChapterSource[],
+  appendices: readonly (PageLink & { summary: string })[] = [],
+): string {
   const items = chapters
     .map(
       (chapter) =>
@@ -65,6 +68,19 @@ with live figures that show what accuracy costs in time.</p>
 <ol class="chapter-list">
 ${items}
 </ol>
+${
+  appendices.length
+    ? `<h2>Appendices</h2>
+<ul class="chapter-list appendix-list">
+${appendices
+  .map(
+    (a) =>
+      `<li><a href="${a.path}"><span class="chapter-number">A</span><span class="chapter-title">${escapeHtml(a.title)}</span></a><p>${escapeHtml(a.summary)}</p></li>`,
+  )
+  .join('\n')}
+</ul>`
+    : ''
+}
 </main>`;
   return shell(`${SITE_TITLE} — ${SITE_SUBTITLE}`, SITE_SUBTITLE, body);
 }
@@ -80,36 +96,51 @@ function renderToc(toc: readonly TocEntry[]): string {
   return `<nav class="toc" aria-label="On this page"><p class="toc-title">On this page</p><ol>${items}</ol></nav>`;
 }
 
-function pagerLink(chapter: ChapterSource | undefined, rel: 'prev' | 'next'): string {
-  if (!chapter) return '<span></span>';
+export interface PageLink {
+  path: string;
+  /** E.g. "2. Extinction and transmittance". */
+  title: string;
+}
+
+export function chapterLink(chapter: ChapterSource): PageLink {
+  return { path: chapterPath(chapter), title: `${chapter.number}. ${chapter.title}` };
+}
+
+function pagerLink(link: PageLink | undefined, rel: 'prev' | 'next'): string {
+  if (!link) return '<span></span>';
   const label = rel === 'prev' ? 'Previous' : 'Next';
   return (
-    `<a class="pager-${rel}" rel="${rel}" href="${chapterPath(chapter)}">` +
+    `<a class="pager-${rel}" rel="${rel}" href="${link.path}">` +
     `<span class="pager-label">${label}</span>` +
-    `<span class="pager-title">${chapter.number}. ${escapeHtml(chapter.title)}</span></a>`
+    `<span class="pager-title">${escapeHtml(link.title)}</span></a>`
   );
 }
 
-export function renderChapterPage(
-  chapter: ChapterSource,
-  html: string,
-  toc: readonly TocEntry[],
-  previous: ChapterSource | undefined,
-  next: ChapterSource | undefined,
-): string {
+export interface ArticlePage {
+  /** Small line above the title, e.g. "Chapter 2" or "Appendix". */
+  kicker: string;
+  title: string;
+  summary: string;
+  html: string;
+  toc: readonly TocEntry[];
+  previous?: PageLink;
+  next?: PageLink;
+}
+
+export function renderArticlePage(page: ArticlePage): string {
   const body = `<div class="chapter-layout">
-${renderToc(toc)}
-<main id="content" class="chapter" data-chapter="${chapter.number}">
+${renderToc(page.toc)}
+<main id="content" class="chapter">
 <article>
 <header class="chapter-header">
-<p class="chapter-kicker">Chapter ${chapter.number}</p>
-<h1>${escapeHtml(chapter.title)}</h1>
-<p class="chapter-summary">${escapeHtml(chapter.summary)}</p>
+<p class="chapter-kicker">${escapeHtml(page.kicker)}</p>
+<h1>${escapeHtml(page.title)}</h1>
+<p class="chapter-summary">${escapeHtml(page.summary)}</p>
 </header>
-${html}
+${page.html}
 </article>
-<nav class="pager" aria-label="Chapters">${pagerLink(previous, 'prev')}${pagerLink(next, 'next')}</nav>
+<nav class="pager" aria-label="Chapters">${pagerLink(page.previous, 'prev')}${pagerLink(page.next, 'next')}</nav>
 </main>
 </div>`;
-  return shell(`${chapter.number}. ${chapter.title} — ${SITE_TITLE}`, chapter.summary, body);
+  return shell(`${page.title} — ${SITE_TITLE}`, page.summary, body);
 }
