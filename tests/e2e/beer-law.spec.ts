@@ -133,3 +133,29 @@ test('the heterogeneous profile shows the multiplicative property', async ({ pag
   expect(Math.abs(parseDisplayed(product) - before) / before).toBeLessThan(5e-4);
   await expect(widget.locator('[data-readout="split-check"]')).toContainText('holds');
 });
+
+test('when the GPU device is lost, the widget falls back to the CPU and says so', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  // Keep a handle on the page's device so the test can destroy it, as a driver reset would.
+  await page.addInitScript(() => {
+    const original = GPUAdapter.prototype.requestDevice;
+    GPUAdapter.prototype.requestDevice = async function (
+      this: GPUAdapter,
+      descriptor?: GPUDeviceDescriptor,
+    ) {
+      const device = await original.call(this, descriptor);
+      (window as unknown as { testDevice: GPUDevice }).testDevice = device;
+      return device;
+    };
+  });
+  const widget = await firstWidget(page);
+  await expect(widget.locator('.sb-cost')).toContainText('WebGPU');
+  await page.evaluate(() => (window as unknown as { testDevice: GPUDevice }).testDevice.destroy());
+  await expect(widget.locator('.sb-notice--warning')).toContainText('device was lost');
+  await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
+  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  expect(stats.luminanceDeviation).toBeGreaterThan(10);
+  expect(errors).toEqual([]);
+});

@@ -29,7 +29,11 @@ export class LinePlot {
     private readonly options: LinePlotOptions,
   ) {
     this.resizeObserver = new ResizeObserver(() => {
-      if (this.plot) this.plot.setSize({ width: this.width(), height: this.options.height ?? 220 });
+      if (!this.plot) return;
+      // Presentation mode changes the type size: rebuild so the axes scale with it.
+      if (this.lastData && this.fontSize() !== this.builtFontSize)
+        this.update(this.lastData.x, this.lastData.series);
+      else this.plot.setSize({ width: this.width(), height: this.height() });
     });
     this.resizeObserver.observe(container);
     // Axis colours are baked into the chart: rebuild it when the theme changes.
@@ -43,6 +47,17 @@ export class LinePlot {
     });
   }
 
+  private builtFontSize = 0;
+
+  private fontSize(): number {
+    return parseFloat(getComputedStyle(this.container).fontSize) || 16;
+  }
+
+  /** The plot grows with the type size (presentation mode). */
+  private height(): number {
+    return Math.round(((this.options.height ?? 220) * this.fontSize()) / 16);
+  }
+
   private width(): number {
     return Math.max(240, Math.floor(this.container.clientWidth || 480));
   }
@@ -51,25 +66,33 @@ export class LinePlot {
   update(x: ArrayLike<number>, series: readonly PlotSeries[]): void {
     this.lastData = { x, series };
     const data = [Array.from(x), ...series.map((s) => Array.from(s.values))] as uPlot.AlignedData;
-    const signature = series.map((s) => `${s.label}|${s.color}`).join(';');
+    const fontSize = this.fontSize();
+    const signature = `${fontSize};${series.map((s) => `${s.label}|${s.color}`).join(';')}`;
     if (this.plot && signature === this.signature) {
       this.plot.setData(data);
       return;
     }
     this.plot?.destroy();
     this.signature = signature;
+    this.builtFontSize = fontSize;
+    const font = `${Math.round(fontSize * 0.75)}px system-ui, sans-serif`;
+    const labelFont = `600 ${Math.round(fontSize * 0.8)}px system-ui, sans-serif`;
     // The resolved text colour of the container (theme colours are light-dark() pairs).
     const stroke = getComputedStyle(this.container).color || '#555';
     const axis = (label: string): uPlot.Axis => ({
       label,
       stroke,
+      font,
+      labelFont,
+      size: Math.round(fontSize * 3),
+      labelSize: Math.round(fontSize * 1.5),
       grid: { stroke: 'rgba(128,128,128,0.2)', width: 1 },
       ticks: { stroke: 'rgba(128,128,128,0.4)', width: 1 },
     });
     this.plot = new uPlot(
       {
         width: this.width(),
-        height: this.options.height ?? 220,
+        height: this.height(),
         scales: {
           x: { time: false },
           y: this.options.yRange ? { range: this.options.yRange } : {},

@@ -79,7 +79,9 @@ export abstract class WidgetElement extends HTMLElement {
       this.visible = entries.some((entry) => entry.isIntersecting);
       if (this.visible && this.dirty) this.scheduleRender();
     });
-    this.observer.observe(this);
+    // Observe the shell, not the host: in presentation mode the shell is fixed to the
+    // viewport while the (then empty) host may sit off screen.
+    if (this.root) this.observer.observe(this.root);
   }
 
   disconnectedCallback(): void {
@@ -317,7 +319,7 @@ export abstract class WidgetElement extends HTMLElement {
   /** Renders on the next frame if visible; otherwise when it scrolls into view. */
   protected scheduleRender(): void {
     this.dirty = true;
-    if (!this.visible || this.frameRequested) return;
+    if (!(this.visible || this.isPresenting()) || this.frameRequested) return;
     this.frameRequested = true;
     requestAnimationFrame(() => {
       this.frameRequested = false;
