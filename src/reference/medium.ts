@@ -2,6 +2,7 @@
 // the exact τ(s0, s1) and a majorant on a segment. Same field names as the WGSL
 // struct Medium1D; `cells` has at most GRID1D_MAX_CELLS entries.
 import {
+  FINITE_LIMIT,
   GRID1D_MAX_CELLS,
   opticalThicknessGrid1D,
   opticalThicknessHomogeneous,
@@ -121,4 +122,329 @@ export function mediumMajorant(medium: Medium1D, s0: number, s1: number): number
     default:
       return Math.max(medium.sigma0, 0);
   }
+}
+
+// ---------------------------------------------------------------------------
+// 3D density grids: twin of the DensityGrid functions of shaders/medium.wesl, with
+// the same conventions (cell-centred samples, clamp-to-edge, 0 outside the closed
+// box, densities and densityScale clamped to [0, 1e18]). The WGSL `texture_3d<f32>`
+// of samples is a Float32Array here, x fastest: sample (i, j, k) is
+// volume[i + nx·(j + ny·k)].
+// Written from the definitions: the trilinear value is a weighted sum over the eight
+// corners, and the segment majorant splits the segment at every plane it crosses.
+
+export type Vec3 = readonly [number, number, number];
+
+/** Same fields as the WGSL struct DensityGrid (its samples are passed beside it). */
+export interface DensityGrid {
+  dimensions: Vec3;
+  boundsMin: Vec3;
+  boundsMax: Vec3;
+  densityScale: number;
+}
+
+/** A grid with its samples, as a widget or a test builds it and as the GPU receives it. */
+export interface DensityGridData {
+  grid: DensityGrid;
+  volume: Float32Array;
+}
+
+/** Same fields as the WGSL struct GridMajorantSegment. */
+export interface GridMajorantSegment {
+  majorant: number;
+  cellsVisited: number;
+  capped: number;
+}
+
+export const GRID_DDA_MAX_CELLS = 256;
+export const GRID_SEGMENT_LIMIT = 1e17;
+
+const AXES = [0, 1, 2] as const;
+const clampBetween = (x: number, lo: number, hi: number): number => Math.min(Math.max(x, lo), hi);
+/**
+ * Densities and densityScale are clamped to f32(1e18), the value of the WGSL
+ * FINITE_LIMIT: the majorant grid stores clamped samples as f32, and must still bound
+ * the density.
+ */
+const DENSITY_LIMIT = Math.fround(FINITE_LIMIT);
+const clampDensity = (x: number): number => clampBetween(x, 0, DENSITY_LIMIT);
+const f32 = Math.fround;
+
+/**
+ * Builds a grid whose fields are rounded to f32, as the GPU sees them. `values` has
+ * nx·ny·nz finite entries, x fastest.
+ */
+export function makeDensityGrid(
+  values: ArrayLike<number>,
+  dimensions: Vec3,
+  boundsMin: Vec3,
+  boundsMax: Vec3,
+  densityScale: number,
+): DensityGridData {
+  const [nx, ny, nz] = dimensions;
+  if (!dimensions.every((n) => Number.isInteger(n) && n >= 1))
+    throw new Error(`grid dimensions must be positive integers, got ${dimensions.join('×')}`);
+  if (values.length !== nx * ny * nz)
+    throw new Error(`a ${nx}×${ny}×${nz} grid needs ${nx * ny * nz} values, got ${values.length}`);
+  const volume = Float32Array.from(values);
+  if (!volume.every(Number.isFinite)) throw new Error('grid values must be finite');
+  const round = (v: Vec3): Vec3 => [f32(v[0]), f32(v[1]), f32(v[2])];
+  return {
+    grid: {
+      dimensions: [nx, ny, nz],
+      boundsMin: round(boundsMin),
+      boundsMax: round(boundsMax),
+      densityScale: f32(densityScale),
+    },
+    volume,
+  };
+}
+
+/** True when every sample is equal, the precondition of gridOpticalDepthConstant. */
+export function gridIsConstant(volume: Float32Array): boolean {
+  return volume.every((v) => v === volume[0]);
+}
+
+export function gridHasVolume(grid: DensityGrid): boolean {
+  return AXES.every(
+    (a) =>
+      grid.dimensions[a] >= 1 &&
+      grid.boundsMin[a] < grid.boundsMax[a] &&
+      grid.boundsMin[a] >= -FINITE_LIMIT &&
+      grid.boundsMax[a] <= FINITE_LIMIT,
+  );
+}
+
+export function gridSample(grid: DensityGrid, volume: Float32Array, cell: Vec3): number {
+  const [nx, ny, nz] = grid.dimensions;
+  const i = Math.min(cell[0], Math.max(nx, 1) - 1);
+  const j = Math.min(cell[1], Math.max(ny, 1) - 1);
+  const k = Math.min(cell[2], Math.max(nz, 1) - 1);
+  return clampDensity(volume[i + nx * (j + ny * k)] ?? 0);
+}
+
+export function lerpWithinEndpoints(a: number, b: number, t: number): number {
+  return clampBetween((1 - t) * a + t * b, Math.min(a, b), Math.max(a, b));
+}
+
+function insideClosedBox(grid: DensityGrid, p: Vec3): boolean {
+  return AXES.every((a) => p[a] >= grid.boundsMin[a] && p[a] <= grid.boundsMax[a]);
+}
+
+export function gridDensityTrilinear(grid: DensityGrid, volume: Float32Array, p: Vec3): number {
+  if (!gridHasVolume(grid) || !insideClosedBox(grid, p)) return 0;
+  // Per axis: the two samples around p and their weights. Sample i's centre is at
+  // u = i in u = (p − min)/(max − min)·n − ½; clamping u to [0, n − 1] is clamp-to-edge.
+  const lower: number[] = [];
+  const fraction: number[] = [];
+  for (const a of AXES) {
+    const n = grid.dimensions[a];
+    const u = ((p[a] - grid.boundsMin[a]) / (grid.boundsMax[a] - grid.boundsMin[a])) * n - 0.5;
+    const clamped = clampBetween(u, 0, n - 1);
+    const i = Math.min(Math.floor(clamped), Math.max(n - 2, 0));
+    lower.push(i);
+    fraction.push(clamped - i);
+  }
+  let sum = 0;
+  let largest = 0;
+  for (let corner = 0; corner < 8; corner++) {
+    let weight = 1;
+    const cell = AXES.map((a) => {
+      const upper = (corner >> a) & 1;
+      const f = fraction[a] ?? 0;
+      weight *= upper ? f : 1 - f;
+      return (lower[a] ?? 0) + upper;
+    }) as unknown as Vec3;
+    const value = gridSample(grid, volume, cell);
+    sum += weight * value;
+    // Only corners that carry weight bound the result (an n = 1 axis has one sample).
+    if (weight > 0) largest = Math.max(largest, value);
+  }
+  // A convex combination cannot exceed its largest term; the clamp removes the
+  // float64 rounding of the sum so that majorants bound the result exactly.
+  return clampDensity(grid.densityScale) * Math.min(sum, largest);
+}
+
+export function gridCellIndex(grid: DensityGrid, p: Vec3): Vec3 {
+  return AXES.map((a) => {
+    const m = grid.dimensions[a];
+    const lo = grid.boundsMin[a];
+    const hi = grid.boundsMax[a];
+    const x = (clampBetween(p[a], lo, hi) - lo) / (hi - lo);
+    return clampBetween(Math.floor(x * m), 0, m - 1);
+  }) as unknown as Vec3;
+}
+
+export function gridMajorantLookup(
+  majorantGrid: DensityGrid,
+  majorantVolume: Float32Array,
+  p: Vec3,
+): number {
+  if (!gridHasVolume(majorantGrid) || !insideClosedBox(majorantGrid, p)) return 0;
+  return (
+    clampDensity(majorantGrid.densityScale) *
+    gridSample(majorantGrid, majorantVolume, gridCellIndex(majorantGrid, p))
+  );
+}
+
+/**
+ * CPU only: a coarse majorant grid for `fine`, one cell per block of blockSize³ fine
+ * cells (the last block of an axis may be partial, so the coarse box may reach past
+ * the fine one). Each coarse cell holds the largest sample that a trilinear lookup
+ * inside the block can touch: the block's own samples plus ONE NEIGHBOUR ON EACH SIDE
+ * per axis. A point in the outer half cell of a block blends the sample just across
+ * the block face with weight up to ½, so the largest sample of the block alone can lie
+ * below σt there, and delta tracking with σt > σ̄ is biased (physics.md §4.5). The
+ * trilinear value is a convex combination of the samples it touches, so their maximum
+ * bounds it, and the GPU's clamped lerps keep that true in f32. Because block faces
+ * lie on fine cell faces, a fine sample coordinate there is a half-integer; f32
+ * rounding of a position near a block face can change its coarse cell but not which
+ * samples its lookup touches, and those belong to the support of both blocks.
+ * The coarse densityScale is the fine one, so σ̄ = densityScale·(block maximum).
+ */
+export function gridMajorantBuild(
+  fine: DensityGrid,
+  volume: Float32Array,
+  blockSize: number,
+): DensityGridData {
+  const block = Math.max(1, Math.floor(blockSize));
+  const n = fine.dimensions.map((d) => Math.max(d, 1)) as unknown as Vec3;
+  const m = n.map((d) => Math.ceil(d / block)) as unknown as Vec3;
+  // The coarse box covers m·block fine cells per axis; a partial last block extends
+  // it. Rounded up to f32 so that it never ends inside the fine box.
+  const boundsMax = AXES.map((a) => {
+    if (m[a] * block === n[a]) return fine.boundsMax[a];
+    const lo = fine.boundsMin[a];
+    const exact = lo + ((fine.boundsMax[a] - lo) * m[a] * block) / n[a];
+    return roundUpToF32(exact);
+  }) as unknown as Vec3;
+  const values = new Float32Array(m[0] * m[1] * m[2]);
+  // Per axis and coarse index c: the sample range [c·block − 1, (c+1)·block] ∩ [0, n − 1].
+  const support = (a: number, c: number): [number, number] => [
+    Math.max(c * block - 1, 0),
+    Math.min((c + 1) * block, (n[a] ?? 1) - 1),
+  ];
+  for (let cz = 0; cz < m[2]; cz++) {
+    const [z0, z1] = support(2, cz);
+    for (let cy = 0; cy < m[1]; cy++) {
+      const [y0, y1] = support(1, cy);
+      for (let cx = 0; cx < m[0]; cx++) {
+        const [x0, x1] = support(0, cx);
+        let largest = 0;
+        for (let k = z0; k <= z1; k++)
+          for (let j = y0; j <= y1; j++)
+            for (let i = x0; i <= x1; i++)
+              largest = Math.max(largest, gridSample(fine, volume, [i, j, k]));
+        values[cx + m[0] * (cy + m[1] * cz)] = largest;
+      }
+    }
+  }
+  return {
+    grid: { dimensions: m, boundsMin: fine.boundsMin, boundsMax, densityScale: fine.densityScale },
+    volume: values,
+  };
+}
+
+function roundUpToF32(x: number): number {
+  const rounded = f32(x);
+  if (rounded >= x) return rounded;
+  const bits = new Float32Array([rounded]);
+  const word = new Uint32Array(bits.buffer);
+  word[0] = (word[0] ?? 0) + (rounded >= 0 ? 1 : -1);
+  return bits[0] ?? rounded;
+}
+
+export function gridRayParameter(offset: number, slope: number): number {
+  return clampBetween(offset / slope, -FINITE_LIMIT, FINITE_LIMIT);
+}
+
+const EMPTY_SEGMENT: [number, number] = [1, 0];
+
+export function gridSegmentInBounds(
+  grid: DensityGrid,
+  origin: Vec3,
+  direction: Vec3,
+  tMin: number,
+  tMax: number,
+): [number, number] {
+  if (!gridHasVolume(grid)) return [...EMPTY_SEGMENT];
+  let t0 = clampBetween(tMin, -GRID_SEGMENT_LIMIT, GRID_SEGMENT_LIMIT);
+  let t1 = clampBetween(tMax, -GRID_SEGMENT_LIMIT, GRID_SEGMENT_LIMIT);
+  for (const a of AXES) {
+    const [o, d, lo, hi] = [origin[a], direction[a], grid.boundsMin[a], grid.boundsMax[a]];
+    if (d === 0) {
+      if (o < lo || o > hi) return [...EMPTY_SEGMENT];
+      continue;
+    }
+    const enter = gridRayParameter((d > 0 ? lo : hi) - o, d);
+    const exit = gridRayParameter((d > 0 ? hi : lo) - o, d);
+    t0 = Math.max(t0, enter);
+    t1 = Math.min(t1, exit);
+  }
+  return t0 > t1 ? [...EMPTY_SEGMENT] : [t0, t1];
+}
+
+export function gridMajorantAlongRay(
+  majorantGrid: DensityGrid,
+  majorantVolume: Float32Array,
+  origin: Vec3,
+  direction: Vec3,
+  tMin: number,
+  tMax: number,
+): GridMajorantSegment {
+  const [t0, t1] = gridSegmentInBounds(majorantGrid, origin, direction, tMin, tMax);
+  if (t0 > t1) return { majorant: 0, cellsVisited: 0, capped: 0 };
+  const { boundsMin, boundsMax, dimensions } = majorantGrid;
+  // Split [t0, t1] at every cell plane the ray crosses; each piece lies in one cell.
+  const cuts = [t0, t1];
+  for (const a of AXES) {
+    if (direction[a] === 0) continue;
+    for (let k = 1; k < dimensions[a]; k++) {
+      const plane = boundsMin[a] + ((boundsMax[a] - boundsMin[a]) * k) / dimensions[a];
+      const t = (plane - origin[a]) / direction[a];
+      if (t > t0 && t < t1) cuts.push(t);
+    }
+  }
+  cuts.sort((a, b) => a - b);
+  const pieces: Vec3[] = [];
+  const at = (t: number): Vec3 => AXES.map((a) => origin[a] + t * direction[a]) as unknown as Vec3;
+  if (t1 === t0) {
+    // A point: its cell, or the cell below a face it sits on when moving towards −axis.
+    const p = at(t0);
+    const cell = gridCellIndex(majorantGrid, p);
+    pieces.push(
+      AXES.map((a) => {
+        const x = ((p[a] - boundsMin[a]) / (boundsMax[a] - boundsMin[a])) * dimensions[a];
+        return direction[a] < 0 && cell[a] > 0 && x === cell[a] ? cell[a] - 1 : cell[a];
+      }) as unknown as Vec3,
+    );
+  }
+  for (let i = 0; i + 1 < cuts.length; i++) {
+    const [a, b] = [cuts[i] ?? 0, cuts[i + 1] ?? 0];
+    if (b > a) pieces.push(gridCellIndex(majorantGrid, at(0.5 * (a + b))));
+  }
+  const cells = pieces.filter(
+    (cell, i) => i === 0 || !AXES.every((a) => cell[a] === pieces[i - 1]?.[a]),
+  );
+  const visited = cells.slice(0, GRID_DDA_MAX_CELLS);
+  const largest = Math.max(0, ...visited.map((c) => gridSample(majorantGrid, majorantVolume, c)));
+  return {
+    majorant: clampDensity(majorantGrid.densityScale) * largest,
+    cellsVisited: visited.length,
+    capped: cells.length > GRID_DDA_MAX_CELLS ? 1 : 0,
+  };
+}
+
+export function gridOpticalDepthConstant(
+  grid: DensityGrid,
+  volume: Float32Array,
+  origin: Vec3,
+  direction: Vec3,
+  tMin: number,
+  tMax: number,
+): number {
+  const [t0, t1] = gridSegmentInBounds(grid, origin, direction, tMin, tMax);
+  if (t1 <= t0) return 0;
+  const sigmaT = clampDensity(grid.densityScale) * gridSample(grid, volume, [0, 0, 0]);
+  return opticalThicknessHomogeneous(sigmaT, (t1 - t0) * Math.hypot(...direction));
 }
