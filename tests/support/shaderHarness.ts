@@ -17,18 +17,23 @@
 // Inputs are rounded to f32 before both sides see them (physics.md §10: the
 // oracle works on the same f32 inputs). Every f32 output must be finite.
 import { beforeAll, describe, expect, it } from 'vitest';
-import { linkKernel } from '../../src/gpu/link.ts';
-import { runCompute } from '../../src/gpu/compute.ts';
+import {
+  evaluateCases,
+  generateKernel,
+  type Argument,
+  type ArgumentType,
+  type CaseOutcome,
+  type ResultType,
+  type ScalarType,
+} from '../../src/gpu/functionEvaluator.ts';
 import { nodeDevice } from './nodeGpu.ts';
 import { SHADER_LIBRARY } from './shaderLibrary.ts';
-import { bitsToF32, f32ToBits, ulpDistance } from './f32.ts';
+import { ulpDistance } from './f32.ts';
 
-export type ScalarType = 'f32' | 'u32' | 'i32';
-/** `f32[N]` stands for the WGSL `array<f32, N>`. */
-export type ArgumentType = ScalarType | `f32[${number}]`;
-export type ResultType = ScalarType | 'vec2f' | 'vec3f' | 'vec4f';
-
-export type Argument = number | readonly number[];
+// Packing, kernel generation, dispatch and unpacking live in src/gpu/functionEvaluator.ts
+// (shared with the command line); this file adds the Dawn device, tolerances and Vitest.
+export { generateKernel };
+export type { Argument, ArgumentType, CaseOutcome, ResultType, ScalarType };
 
 export interface Tolerance {
   /** Pass when |gpu − twin| ≤ relative·|twin| … */
@@ -69,131 +74,10 @@ export interface ShaderFunctionTable {
   wrapper?: { wgsl: string; imports: readonly string[] };
 }
 
-const WORKGROUP_SIZE = 64;
-
-function argumentWords(type: ArgumentType): number {
-  const match = /^f32\[(\d+)\]$/.exec(type);
-  return match ? Number(match[1]) : 1;
-}
-
-function resultWords(type: ResultType): number {
-  return type === 'vec2f' ? 2 : type === 'vec3f' ? 3 : type === 'vec4f' ? 4 : 1;
-}
-
-function encodeScalar(type: ScalarType | 'f32', value: number): number {
-  if (type === 'f32') return f32ToBits(value);
-  if (type === 'i32') return (value | 0) >>> 0;
-  return value >>> 0;
-}
-
-/** Rounds an argument as the GPU will see it. */
-function asGpuSees(type: ArgumentType, value: Argument): Argument {
-  if (Array.isArray(value)) return value.map((v) => Math.fround(v));
-  if (type === 'f32') return Math.fround(value as number);
-  return value;
-}
-
-export function generateKernel(table: ShaderFunctionTable, caseCount: number): string {
-  const strides = table.args.map(argumentWords);
-  const stride = strides.reduce((a, b) => a + b, 0);
-  const lines: string[] = [];
-  let offset = 0;
-  table.args.forEach((type, index) => {
-    if (type === 'f32') lines.push(`  let a${index} = bitcast<f32>(inputs[base + ${offset}u]);`);
-    else if (type === 'u32') lines.push(`  let a${index} = inputs[base + ${offset}u];`);
-    else if (type === 'i32')
-      lines.push(`  let a${index} = bitcast<i32>(inputs[base + ${offset}u]);`);
-    else {
-      const n = argumentWords(type);
-      lines.push(`  var a${index}: array<f32, ${n}>;`);
-      lines.push(
-        `  for (var k = 0u; k < ${n}u; k++) { a${index}[k] = bitcast<f32>(inputs[base + ${offset}u + k]); }`,
-      );
-    }
-    offset += argumentWords(type);
-  });
-  const callee = table.wrapper ? 'caseUnderTest' : table.fn;
-  const call = `${callee}(${table.args.map((_, i) => `a${i}`).join(', ')})`;
-  const words = resultWords(table.result);
-  const store =
-    table.result === 'u32'
-      ? ['  outputs[i] = r;']
-      : table.result === 'i32' || table.result === 'f32'
-        ? ['  outputs[i] = bitcast<u32>(r);']
-        : Array.from(
-            { length: words },
-            (_, k) => `  outputs[i * ${words}u + ${k}u] = bitcast<u32>(r[${k}]);`,
-          );
-  const imports = table.wrapper ? table.wrapper.imports : [table.fn];
-  return [
-    ...imports.map((name) => `import package::${table.module.replace(/\//g, '::')}::${name};`),
-    '@group(0) @binding(0) var<storage, read> inputs: array<u32>;',
-    '@group(0) @binding(1) var<storage, read_write> outputs: array<u32>;',
-    table.wrapper?.wgsl ?? '',
-    `@compute @workgroup_size(${WORKGROUP_SIZE})`,
-    'fn main(@builtin(global_invocation_id) id: vec3u) {',
-    '  let i = id.x;',
-    `  if (i >= ${caseCount}u) { return; }`,
-    `  let base = i * ${stride}u;`,
-    ...lines,
-    `  let r = ${call};`,
-    ...store,
-    '}',
-  ].join('\n');
-}
-
-export interface CaseOutcome {
-  gpu: number[];
-  twin: number[];
-}
-
 /** Links and runs the table on the GPU and evaluates the twin; one outcome per case. */
 export async function evaluateTable(table: ShaderFunctionTable): Promise<CaseOutcome[]> {
   const device = await nodeDevice();
-  const code = await linkKernel(SHADER_LIBRARY, generateKernel(table, table.cases.length));
-  const stride = table.args.map(argumentWords).reduce((a, b) => a + b, 0);
-  const words = resultWords(table.result);
-  const inputs = new Uint32Array(table.cases.length * stride);
-  table.cases.forEach((testCase, caseIndex) => {
-    if (testCase.args.length !== table.args.length) {
-      throw new Error(
-        `${table.fn} case "${testCase.name}" has ${testCase.args.length} arguments, expected ${table.args.length}`,
-      );
-    }
-    let offset = caseIndex * stride;
-    table.args.forEach((type, index) => {
-      const value = testCase.args[index] as Argument;
-      if (Array.isArray(value)) {
-        const n = argumentWords(type);
-        for (let k = 0; k < n; k++) inputs[offset + k] = f32ToBits(value[k] ?? 0);
-        offset += n;
-      } else {
-        inputs[offset] = encodeScalar(type as ScalarType, value as number);
-        offset += 1;
-      }
-    });
-  });
-  const { output } = await runCompute(device, {
-    code,
-    inputs: [inputs],
-    outputWords: table.cases.length * words,
-    workgroups: [Math.ceil(table.cases.length / WORKGROUP_SIZE)],
-  });
-  return table.cases.map((testCase, caseIndex) => {
-    const raw = Array.from(output.slice(caseIndex * words, caseIndex * words + words));
-    const gpu =
-      table.result === 'u32'
-        ? raw
-        : table.result === 'i32'
-          ? raw.map((w) => w | 0)
-          : raw.map(bitsToF32);
-    const args = testCase.args.map((value, index) =>
-      asGpuSees(table.args[index] as ArgumentType, value),
-    );
-    const twinValue = (table.twin as (...a: Argument[]) => number | readonly number[])(...args);
-    const twin = typeof twinValue === 'number' ? [twinValue] : [...twinValue];
-    return { gpu, twin };
-  });
+  return evaluateCases(device, SHADER_LIBRARY, table);
 }
 
 export function withinTolerance(actual: number, reference: number, tolerance: Tolerance): boolean {
