@@ -3,6 +3,7 @@
 // takes down the page).
 import { setupThemeToggle } from './theme.ts';
 import { setupQuizzes } from './quiz.ts';
+import { setupDeck } from './deck.ts';
 import { WIDGET_LOADERS } from '../widgets/loaders.ts';
 
 async function loadWidgets(): Promise<void> {
@@ -48,4 +49,5 @@ function makeScrollableRegionsFocusable(): void {
 setupThemeToggle();
 makeScrollableRegionsFocusable();
 setupQuizzes();
+setupDeck();
 void loadWidgets();

@@ -69,7 +69,8 @@ export function parseParameters(
     }
     if (parameter.kind === 'number') {
       const value = Number(text);
-      if (!Number.isFinite(value)) {
+      // ±Infinity (e.g. "1e400") is out of range and clamped below; only NaN has no nearest value.
+      if (Number.isNaN(value)) {
         values[parameter.name] = parameter.default;
         warnings.push(
           `${parameter.label} “${text}” is not a number; using ${formatValue(parameter.default)} ${parameter.unit}`.trim(),

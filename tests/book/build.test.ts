@@ -25,11 +25,13 @@ function render(body: string) {
 }
 
 describe('the book builds', () => {
-  it('has a home page, one page per chapter numbered from the file names, and the library appendix', () => {
+  it('has a home page, one page per chapter numbered from the file names, the library appendix and the deck', () => {
     expect(book.pages[0]?.file).toBe('index.html');
     expect(book.chapters.map((c) => c.number)).toEqual(book.chapters.map((_, i) => i + 1));
-    expect(book.pages).toHaveLength(book.chapters.length + 2);
-    expect(book.pages[book.pages.length - 1]?.file).toBe('appendix/shader-library.html');
+    expect(book.pages.map((p) => p.file).slice(book.chapters.length + 1)).toEqual([
+      'appendix/shader-library.html',
+      'deck.html',
+    ]);
   });
 
   it('the appendix documents every library function from its doc comments', () => {

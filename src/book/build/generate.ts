@@ -16,11 +16,13 @@ import {
   chapterLink,
   chapterPath,
   renderArticlePage,
+  renderDeckPage,
   renderHomePage,
   type PageLink,
 } from './pages.ts';
 import { APPENDIX_FILE, APPENDIX_SUMMARY, APPENDIX_TITLE, renderAppendix } from './appendix.ts';
 import { loadShaderDocs } from './shaderDocs.ts';
+import { DECK, validateDeck } from './deck.ts';
 
 export interface BookPage {
   /** Path relative to the project root, e.g. `chapters/02-extinction-and-transmittance.html`. */
@@ -116,6 +118,12 @@ export function buildBook(root: string): Book {
       previous: last ? chapterLink(last) : undefined,
     }),
     widgets: [],
+  });
+  validateDeck(DECK);
+  pages.push({
+    file: 'deck.html',
+    html: renderDeckPage(DECK, new Map(chapters.map((chapter) => [chapter.slug, chapter.title]))),
+    widgets: [...new Set(DECK.map((slide) => slide.widget))],
   });
   return { chapters, pages, equations };
 }

@@ -12,7 +12,16 @@ import {
   type ParameterValues,
   type WidgetEntry,
 } from '../parameters.ts';
-import { readWidgetState, widgetLink, writeWidgetState } from './urlState.ts';
+import {
+  STATE_VERSION,
+  readStateVersion,
+  readWidgetState,
+  widgetLink,
+  writeWidgetState,
+} from './urlState.ts';
+
+/** Hash keys a widget understands besides its parameters. */
+const STATE_KEYS = new Set(['present']);
 
 export interface Preset {
   label: string;
@@ -73,6 +82,7 @@ export abstract class WidgetElement extends HTMLElement {
     for (const warning of new Set([...attributes.warnings, ...merged.warnings])) {
       this.showNotice(`param:${warning}`, 'warning', warning);
     }
+    this.reportLinkProblems(fromUrl);
     if (fromUrl.get('present') === '1') this.setPresenting(true);
 
     this.observer = new IntersectionObserver((entries) => {
@@ -87,6 +97,28 @@ export abstract class WidgetElement extends HTMLElement {
   disconnectedCallback(): void {
     this.observer?.disconnect();
     this.observer = null;
+  }
+
+  /** A link from a newer build, or with settings this widget does not know, opens anyway and says so. */
+  private reportLinkProblems(fromUrl: Map<string, string>): void {
+    const version = readStateVersion();
+    if (fromUrl.size > 0 && !(version >= 1 && version <= STATE_VERSION)) {
+      this.showNotice(
+        'link-version',
+        'warning',
+        `This link uses format version “${String(version)}”, which this book does not know; settings were read as version ${STATE_VERSION} and checked.`,
+      );
+    }
+    const known = new Set(this.entry.parameters.map((p) => p.name));
+    for (const key of fromUrl.keys()) {
+      if (!known.has(key) && !STATE_KEYS.has(key)) {
+        this.showNotice(
+          `link-unknown:${key}`,
+          'warning',
+          `Ignored the unknown setting “${key}” in the link.`,
+        );
+      }
+    }
   }
 
   private buildShell(): void {
@@ -221,6 +253,27 @@ export abstract class WidgetElement extends HTMLElement {
     this.syncControls();
     this.saveState();
     this.scheduleRender();
+    this.showPresetName(`${index + 1} · ${preset.label}`);
+  }
+
+  private presetToastTimer: ReturnType<typeof setTimeout> | null = null;
+
+  /** Shows the recalled preset's name for a moment (announced to screen readers too). */
+  private showPresetName(text: string): void {
+    if (!this.root) return;
+    let toast = this.root.querySelector<HTMLElement>('.sb-preset-toast');
+    if (!toast) {
+      toast = document.createElement('p');
+      toast.className = 'sb-preset-toast';
+      toast.setAttribute('role', 'status');
+      this.root.appendChild(toast);
+    }
+    toast.textContent = text;
+    toast.hidden = false;
+    if (this.presetToastTimer) clearTimeout(this.presetToastTimer);
+    this.presetToastTimer = setTimeout(() => {
+      if (toast) toast.hidden = true;
+    }, 1600);
   }
 
   private syncControls(): void {

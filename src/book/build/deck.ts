@@ -1,0 +1,84 @@
+// The demo deck: every widget in lecture order as full-screen slides, each a
+// deep link (`deck.html#slide=3`), with a one-line caption. Slides are data; a
+// new widget adds its slides here, in the order the lecture shows them.
+import { WIDGET_CATALOG } from '../../widgets/catalog.ts';
+import { parseParameters } from '../../widgets/parameters.ts';
+
+export interface DeckSlide {
+  title: string;
+  /** Widget name without the `sb-` prefix. */
+  widget: string;
+  attributes: Readonly<Record<string, string>>;
+  caption: string;
+  /** Chapter slug the slide belongs to, for the "read more" link. */
+  chapter: string;
+}
+
+export const DECK: readonly DeckSlide[] = [
+  {
+    title: "Beer's law",
+    widget: 'beer-law',
+    attributes: {
+      'sigma-a': '0.2',
+      'sigma-s': '0.8',
+      thickness: '2',
+      profile: 'homogeneous',
+      split: '1',
+    },
+    caption:
+      'Transmittance falls exponentially with optical thickness: T = e^(−σt·d). Drag d and watch T(s).',
+    chapter: '02-extinction-and-transmittance',
+  },
+  {
+    title: 'Fog and smoke',
+    widget: 'beer-law',
+    attributes: {
+      'sigma-a': '1.2',
+      'sigma-s': '0.8',
+      thickness: '2',
+      profile: 'homogeneous',
+      split: '1',
+    },
+    caption:
+      'Absorption and out-scattering both remove light from the beam: only σt = σa + σs matters for T.',
+    chapter: '02-extinction-and-transmittance',
+  },
+  {
+    title: 'The multiplicative property',
+    widget: 'beer-law',
+    attributes: {
+      'sigma-a': '0.2',
+      'sigma-s': '0.6',
+      thickness: '6',
+      profile: 'layered',
+      split: '2.5',
+    },
+    caption:
+      'Through any layers, T(0→d) = T(0→s₀)·T(s₀→d): move the split point and the product stays put.',
+    chapter: '02-extinction-and-transmittance',
+  },
+  {
+    title: 'Optically thick media',
+    widget: 'beer-law',
+    attributes: { 'sigma-a': '5', 'sigma-s': '5', thickness: '10', profile: 'smooth', split: '5' },
+    caption:
+      'At τ = 100 the f32 exponential is subnormal and then exactly 0 — never negative, never NaN.',
+    chapter: '02-extinction-and-transmittance',
+  },
+];
+
+/** Checks every slide against the widget catalog; a bad slide fails the build. */
+export function validateDeck(slides: readonly DeckSlide[] = DECK): void {
+  slides.forEach((slide, index) => {
+    const entry = WIDGET_CATALOG[slide.widget];
+    if (!entry) throw new Error(`deck slide ${index + 1}: unknown widget "${slide.widget}"`);
+    const parsed = parseParameters(entry.parameters, (name) => slide.attributes[name]);
+    if (parsed.warnings.length)
+      throw new Error(`deck slide ${index + 1}: ${parsed.warnings.join('; ')}`);
+    const unknown = Object.keys(slide.attributes).filter(
+      (name) => !entry.parameters.some((p) => p.name === name),
+    );
+    if (unknown.length)
+      throw new Error(`deck slide ${index + 1}: unknown attributes ${unknown.join(', ')}`);
+  });
+}
