@@ -29,6 +29,7 @@ import {
   raymarchOpticalDepth,
 } from '../../src/reference/raymarch.ts';
 import { rngNextFloat, rngSeed } from '../../src/reference/rng.ts';
+import { simpson } from '../support/quadrature.ts';
 
 // The §3 test problem: σt = 1 + 0.5 sin 3t, Le = 1 + t on [0, 2], σa = σt.
 const PROBLEM = sineMedium(1, 0.5, 3);
@@ -40,14 +41,6 @@ const TAU_REFERENCE = 2 - (0.5 / 3) * (Math.cos(6) - 1);
 const sigma = (t: number): number => 1 + 0.5 * Math.sin(3 * t);
 const tau = (t: number): number => t - (0.5 / 3) * (Math.cos(3 * t) - 1);
 const integrand = (t: number): number => Math.exp(-tau(t)) * sigma(t) * (1 + t);
-
-/** Composite Simpson's rule with n (even) intervals. */
-function simpson(f: (x: number) => number, a: number, b: number, n = 2000): number {
-  const h = (b - a) / n;
-  let sum = f(a) + f(b);
-  for (let i = 1; i < n; i++) sum += (i % 2 ? 4 : 2) * f(a + i * h);
-  return (sum * h) / 3;
-}
 
 interface Sample {
   mean: number;

@@ -19,19 +19,13 @@ import {
   singleScatterHomogeneousSlab,
   singleScatterMarched,
 } from '../../src/reference/scatter.ts';
+import { simpson } from '../support/quadrature.ts';
 
 const PHASE_ISOTROPIC = 1 / (4 * Math.PI);
 // §5 example: σs = 0.8, σa = 0.2, p = 1/(4π), E = 1, a = 0.3, b = 0.5, L = 2.
 const EXAMPLE = [0.8, 0.2, PHASE_ISOTROPIC, 1, 0.3, 0.5, 2] as const;
 const EXAMPLE_VALUE = 0.02987593155873194;
 const EXAMPLE_B0_VALUE = 0.04077927647475037;
-
-function simpson(f: (x: number) => number, a: number, b: number, n = 2000): number {
-  const h = (b - a) / n;
-  let sum = f(a) + f(b);
-  for (let i = 1; i < n; i++) sum += (i % 2 ? 4 : 2) * f(a + i * h);
-  return (sum * h) / 3;
-}
 
 /** Upper 1% point of the chi-square distribution with 39 degrees of freedom. */
 const CHI_SQUARE_39_AT_001 = 62.428;

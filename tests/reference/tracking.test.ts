@@ -42,6 +42,8 @@ import {
   type Medium1D,
 } from '../../src/reference/medium.ts';
 import { rngNextFloat, rngSeed, type RngState } from '../../src/reference/rng.ts';
+import { simpson } from '../support/quadrature.ts';
+import { expectMean, expectVariance, type Moments, moments } from '../support/statistics.ts';
 
 /** Upper points of χ² at α = 0.005 (0.01 split over this file's two tests), mpmath. */
 const CHI_SQUARE_63_AT_0005 = 95.6493;
@@ -49,44 +51,17 @@ const CHI_SQUARE_10_AT_0005 = 25.1882;
 
 type Walk = (state: RngState) => TransmittanceEstimate;
 
-interface Summary {
-  n: number;
-  mean: number;
-  variance: number;
-  /** Standard error of the sample variance (4th-moment formula). */
-  varianceError: number;
+interface Summary extends Moments {
   meanLookups: number;
   lookupVariance: number;
   capped: number;
-  min: number;
-  max: number;
 }
 
 function summarize(estimates: readonly number[], lookups: readonly number[], capped = 0): Summary {
   const n = estimates.length;
-  const mean = estimates.reduce((a, b) => a + b, 0) / n;
-  let m2 = 0;
-  let m4 = 0;
-  for (const x of estimates) {
-    const d2 = (x - mean) ** 2;
-    m2 += d2;
-    m4 += d2 * d2;
-  }
-  const variance = m2 / (n - 1);
-  m4 /= n;
   const meanLookups = lookups.reduce((a, b) => a + b, 0) / n;
   const lookupVariance = lookups.reduce((a, b) => a + (b - meanLookups) ** 2, 0) / (n - 1);
-  return {
-    n,
-    mean,
-    variance,
-    varianceError: Math.sqrt(Math.max(m4 - (variance * variance * (n - 3)) / (n - 1), 0) / n),
-    meanLookups,
-    lookupVariance,
-    capped,
-    min: Math.min(...estimates),
-    max: Math.max(...estimates),
-  };
+  return { ...moments(estimates), meanLookups, lookupVariance, capped };
 }
 
 /** Runs n independent walks, walk i seeded with rngSeed(i, frame) as on the GPU. */
@@ -103,22 +78,6 @@ function run(walk: Walk, n: number, frame: number): Summary {
   return summarize(estimates, lookups, capped);
 }
 
-function expectUnbiased(summary: Summary, exact: number, variance = summary.variance): void {
-  const bound = 5 * Math.sqrt(variance / summary.n);
-  expect(
-    Math.abs(summary.mean - exact),
-    `mean ${summary.mean} vs ${exact} (5σ = ${bound})`,
-  ).toBeLessThan(bound);
-}
-
-function expectVariance(summary: Summary, predicted: number): void {
-  const bound = 5 * summary.varianceError;
-  expect(
-    Math.abs(summary.variance - predicted),
-    `variance ${summary.variance} vs ${predicted} (5 SE = ${bound})`,
-  ).toBeLessThan(bound);
-}
-
 function expectMeanLookups(summary: Summary, predicted: number): void {
   const bound = 5 * Math.sqrt(summary.lookupVariance / summary.n);
   expect(
@@ -127,14 +86,7 @@ function expectMeanLookups(summary: Summary, predicted: number): void {
   ).toBeLessThan(bound);
 }
 
-/** Composite Simpson's rule (2000 intervals: error < 1e-12 for the smooth integrands here). */
-function simpson(f: (x: number) => number, a: number, b: number, n = 2000): number {
-  const h = (b - a) / n;
-  let sum = f(a) + f(b);
-  for (let i = 1; i < n; i++) sum += (i % 2 ? 4 : 2) * f(a + i * h);
-  return (sum * h) / 3;
-}
-
+// Integrals below use simpson's default 2000 intervals: error < 1e-12 for these smooth integrands.
 const exactT = (medium: Medium1D, d: number): number => Math.exp(-mediumOpticalDepth(medium, 0, d));
 
 // The media of physics.md §4: a homogeneous one, the smooth sinusoid σ = 1 + 0.5 sin 3t
@@ -232,7 +184,7 @@ describe('delta tracking (Woodcock, physics.md §4.1)', () => {
     const medium = homogeneousMedium(1);
     const s = run((state) => transmittanceDeltaTracking(medium, 1, 2, state, MAX), N, 1);
     const T = Math.exp(-1);
-    expectUnbiased(s, T, deltaTrackingVariance(T));
+    expectMean(s, T, deltaTrackingVariance(T));
     expectVariance(s, deltaTrackingVariance(T));
     expectMeanLookups(s, expectedDeltaTrackingLookups(1, 2, 1));
     expect(s.capped).toBe(0);
@@ -241,7 +193,7 @@ describe('delta tracking (Woodcock, physics.md §4.1)', () => {
   it('smooth sinusoid (σ̄ = 1.5): unbiased for T = 0.134440 with Var = T(1 − T)', () => {
     const s = run((state) => transmittanceDeltaTracking(SINE, SINE_LENGTH, 1.5, state, MAX), N, 2);
     expect(exactT(SINE, SINE_LENGTH)).toBeCloseTo(SINE_T, 12);
-    expectUnbiased(s, SINE_T, deltaTrackingVariance(SINE_T));
+    expectMean(s, SINE_T, deltaTrackingVariance(SINE_T));
     expectVariance(s, deltaTrackingVariance(SINE_T));
   });
 
@@ -254,7 +206,7 @@ describe('delta tracking (Woodcock, physics.md §4.1)', () => {
       N,
       3,
     );
-    expectUnbiased(s, T, deltaTrackingVariance(T));
+    expectMean(s, T, deltaTrackingVariance(T));
     expectVariance(s, deltaTrackingVariance(T));
     expect(s.min).toBe(0);
     expect(s.max).toBe(1);
@@ -277,7 +229,7 @@ describe('ratio tracking (physics.md §4.2)', () => {
     const s = run((state) => transmittanceRatioTracking(medium, 1, 2, state, MAX), N, 5);
     const variance = ratioTrackingVarianceHomogeneous(1, 2);
     expect(variance).toBeCloseTo(0.087795, 6);
-    expectUnbiased(s, Math.exp(-1), variance);
+    expectMean(s, Math.exp(-1), variance);
     expectVariance(s, variance);
     expectMeanLookups(s, expectedRatioTrackingLookups(2, 1));
   });
@@ -287,7 +239,7 @@ describe('ratio tracking (physics.md §4.2)', () => {
     const variance = ratioTrackingVariance(SINE_T, integral);
     expect(variance).toBeCloseTo(0.06426, 5);
     const s = run((state) => transmittanceRatioTracking(SINE, SINE_LENGTH, 1.5, state, MAX), N, 6);
-    expectUnbiased(s, SINE_T, variance);
+    expectMean(s, SINE_T, variance);
     expectVariance(s, variance);
     expectMeanLookups(s, 1.5 * SINE_LENGTH);
   });
@@ -297,7 +249,7 @@ describe('ratio tracking (physics.md §4.2)', () => {
     const integral = [0.5, 3, 0.2, 2, 0, 1.5, 4, 0.1].reduce((a, s) => a + (0.25 * s * s) / 4, 0);
     const variance = ratioTrackingVariance(T, integral);
     const s = run((state) => transmittanceRatioTracking(GRID, GRID_LENGTH, 4, state, MAX), N, 7);
-    expectUnbiased(s, T, variance);
+    expectMean(s, T, variance);
     expectVariance(s, variance);
     expect(s.min).toBeGreaterThanOrEqual(0);
     expect(s.max).toBeLessThanOrEqual(1);
@@ -339,7 +291,7 @@ describe('residual ratio tracking (physics.md §4.3)', () => {
       N,
       9,
     );
-    expectUnbiased(s, SINE_T, variance);
+    expectMean(s, SINE_T, variance);
     expectVariance(s, variance);
     expectMeanLookups(s, 0.5 * SINE_LENGTH);
   });
@@ -354,7 +306,7 @@ describe('residual ratio tracking (physics.md §4.3)', () => {
       N,
       10,
     );
-    expectUnbiased(s, T, variance);
+    expectMean(s, T, variance);
     expectVariance(s, variance);
   });
 
@@ -434,7 +386,7 @@ describe('unbiased ray marching (Kettunen et al. 2021, physics.md §4.4)', () =>
       N,
       14,
     );
-    expectUnbiased(s, SINE_T);
+    expectMean(s, SINE_T);
     // §4.4: std 1.3e-3 to 2.7e-3 for M = 8 and 4 (here M = 7); ratio tracking's Var = 0.064.
     expect(s.variance).toBeLessThan(0.06426 / 100);
     expect(s.capped).toBe(0);
@@ -446,7 +398,7 @@ describe('unbiased ray marching (Kettunen et al. 2021, physics.md §4.4)', () =>
       N,
       15,
     );
-    expectUnbiased(s, exactT(GRID, GRID_LENGTH));
+    expectMean(s, exactT(GRID, GRID_LENGTH));
   });
 
   it('order 0 alone (jittered ray marching) would be biased; the higher orders remove it (§9 row 27)', () => {
@@ -463,7 +415,7 @@ describe('unbiased ray marching (Kettunen et al. 2021, physics.md §4.4)', () =>
     const biased = summarize(zeroOrder, []);
     expect(biased.mean).toBeCloseTo(0.17173, 2);
     expect(Math.abs(biased.mean - SINE_T)).toBeGreaterThan(10 * Math.sqrt(biased.variance / N));
-    expectUnbiased(summarize(full, []), SINE_T);
+    expectMean(summarize(full, []), SINE_T);
   });
 });
 
@@ -472,7 +424,7 @@ describe('failure modes of physics.md §4.5', () => {
 
   it('delta tracking with σt = 2 > σ̄ = 1 is biased high: exp(−∫min(σt, σ̄)) = 0.36788, not 0.135335', () => {
     const s = run((state) => transmittanceDeltaTracking(dense, 1, 1, state, MAX), N, 20);
-    expectUnbiased(s, Math.exp(-1), deltaTrackingVariance(Math.exp(-1)));
+    expectMean(s, Math.exp(-1), deltaTrackingVariance(Math.exp(-1)));
     expect(s.mean - Math.exp(-2)).toBeGreaterThan(0.2);
   });
 
@@ -480,7 +432,7 @@ describe('failure modes of physics.md §4.5', () => {
     const s = run((state) => transmittanceRatioTracking(dense, 1, 1, state, MAX), N, 21);
     const variance = ratioTrackingVarianceHomogeneous(2, 1);
     expect(variance).toBeCloseTo(0.9817, 4);
-    expectUnbiased(s, Math.exp(-2), variance);
+    expectMean(s, Math.exp(-2), variance);
     expectVariance(s, variance);
     expect(s.min).toBe(-1);
   });

@@ -11,14 +11,7 @@ import {
   transmittanceFromOpticalThickness,
   transmittanceHomogeneous,
 } from '../../src/reference/transmittance.ts';
-
-/** Composite Simpson's rule with n (even) intervals: an independent check of the integrals. */
-function simpson(f: (x: number) => number, a: number, b: number, n = 2000): number {
-  const h = (b - a) / n;
-  let sum = f(a) + f(b);
-  for (let i = 1; i < n; i++) sum += (i % 2 ? 4 : 2) * f(a + i * h);
-  return (sum * h) / 3;
-}
+import { simpson } from '../support/quadrature.ts';
 
 const sigma = fc.double({ min: 0, max: 50, noNaN: true });
 const length = fc.double({ min: 0, max: 20, noNaN: true });

@@ -9,12 +9,9 @@ import {
   GRID_DDA_MAX_CELLS,
   gridDensityTrilinear,
   gridHasVolume,
-  gridMajorantAlongRay,
   gridMajorantBuild,
   gridMajorantLookup,
-  gridOpticalDepthConstant,
   gridRayParameter,
-  gridSegmentInBounds,
   lerpWithinEndpoints,
   makeDensityGrid,
   type DensityGrid,
@@ -32,6 +29,9 @@ import {
   gpuOpticalDepthConstant,
   gpuSegmentInBounds,
   type Ray,
+  twinMajorantAlongRay,
+  twinOpticalDepthConstant,
+  twinSegmentInBounds,
 } from '../support/densityGridGpu.ts';
 import { describeShaderFunction } from '../support/shaderHarness.ts';
 import { F32_MAX } from '../support/f32.ts';
@@ -371,14 +371,7 @@ describe('gridMajorantAlongRay: WGSL DDA vs the twin’s plane splitting', () =>
     const gpu = await gpuMajorantAlongRay(MAJORANT, rays);
     let hits = 0;
     rays.forEach((r, i) => {
-      const twin = gridMajorantAlongRay(
-        MAJORANT.grid,
-        MAJORANT.volume,
-        r.origin,
-        r.direction,
-        r.tMin,
-        r.tMax,
-      );
+      const twin = twinMajorantAlongRay(MAJORANT, r);
       const g = gpu[i] as GridMajorantSegment;
       const label = `ray ${i}: ${JSON.stringify(r)}`;
       expect(g.majorant, label).toBe(Math.fround(twin.majorant));
@@ -402,14 +395,7 @@ describe('gridMajorantAlongRay: WGSL DDA vs the twin’s plane splitting', () =>
     const density = await gpuDensity(FINE, points);
     let violations = 0;
     subset.forEach((r, i) => {
-      const twinMajorant = gridMajorantAlongRay(
-        MAJORANT.grid,
-        MAJORANT.volume,
-        r.origin,
-        r.direction,
-        r.tMin,
-        r.tMax,
-      ).majorant;
+      const twinMajorant = twinMajorantAlongRay(MAJORANT, r).majorant;
       for (let s = 0; s < 64; s++) {
         const p = points[i * 64 + s] as Vec3;
         if (!((density[i * 64 + s] ?? NaN) <= (majorants[i]?.majorant ?? NaN))) violations += 1;
@@ -431,22 +417,8 @@ describe('gridMajorantAlongRay: WGSL DDA vs the twin’s plane splitting', () =>
     const ray: Ray = { origin: [0.5, 0.5, -1], direction: [0, 0, 1], tMin: 0, tMax: 1000 };
     const [capped] = await gpuMajorantAlongRay(long, [ray]);
     const [uncapped] = await gpuMajorantAlongRay(exact, [ray]);
-    const twinCapped = gridMajorantAlongRay(
-      long.grid,
-      long.volume,
-      ray.origin,
-      ray.direction,
-      0,
-      1000,
-    );
-    const twinUncapped = gridMajorantAlongRay(
-      exact.grid,
-      exact.volume,
-      ray.origin,
-      ray.direction,
-      0,
-      1000,
-    );
+    const twinCapped = twinMajorantAlongRay(long, ray);
+    const twinUncapped = twinMajorantAlongRay(exact, ray);
     // Capped: the spike in the last cell was never seen, and the result says so.
     expect(capped).toEqual({ majorant: 1, cellsVisited: GRID_DDA_MAX_CELLS, capped: 1 });
     expect(twinCapped).toEqual(capped);
@@ -463,7 +435,7 @@ describe('gridSegmentInBounds and gridOpticalDepthConstant: WGSL vs twin', () =>
     const gpu = await gpuSegmentInBounds(constant, rays);
     let inside = 0;
     rays.forEach((r, i) => {
-      const twin = gridSegmentInBounds(constant.grid, r.origin, r.direction, r.tMin, r.tMax);
+      const twin = twinSegmentInBounds(constant, r);
       const [g0, g1] = gpu[i] as [number, number];
       const label = `ray ${i}: ${JSON.stringify(r)} GPU [${g0}, ${g1}] twin [${twin.join(', ')}]`;
       expect(g0 > g1, label).toBe(twin[0] > twin[1]);
@@ -478,15 +450,8 @@ describe('gridSegmentInBounds and gridOpticalDepthConstant: WGSL vs twin', () =>
   it('constant-grid τ = densityScale·ρ·chord agrees (the t ends’ error times |d|, plus 4 ULP of τ)', async () => {
     const gpu = await gpuOpticalDepthConstant(constant, rays);
     rays.forEach((r, i) => {
-      const twin = gridOpticalDepthConstant(
-        constant.grid,
-        constant.volume,
-        r.origin,
-        r.direction,
-        r.tMin,
-        r.tMax,
-      );
-      const [t0, t1] = gridSegmentInBounds(constant.grid, r.origin, r.direction, r.tMin, r.tMax);
+      const twin = twinOpticalDepthConstant(constant, r);
+      const [t0, t1] = twinSegmentInBounds(constant, r);
       const speed = Math.hypot(...r.direction);
       const sigmaT = 4 * 0.75;
       // Each end is off by ≤ 5e-7·|t|; the chord by their sum; length() and the products
@@ -500,14 +465,7 @@ describe('gridSegmentInBounds and gridOpticalDepthConstant: WGSL vs twin', () =>
   it('τ through a box along an axis is densityScale·ρ times the box width, whatever the segment beyond it', async () => {
     const through: Ray = { origin: [0, 1.5, -5], direction: [0, 0, 2], tMin: -100, tMax: 100 };
     const [gpu] = await gpuOpticalDepthConstant(constant, [through]);
-    const twin = gridOpticalDepthConstant(
-      constant.grid,
-      constant.volume,
-      through.origin,
-      through.direction,
-      -100,
-      100,
-    );
+    const twin = twinOpticalDepthConstant(constant, through);
     expect(twin).toBe(3);
     expect(gpu).toBe(3);
   });

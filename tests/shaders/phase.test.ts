@@ -11,9 +11,7 @@ import {
   cbrtReal,
   directionAroundAxis,
   hgEval,
-  hgEvalDirections,
   hgEvalTerms,
-  hgSample,
   hgSampleMu,
   orthonormalBasis,
   phaseIsotropic,
@@ -24,54 +22,25 @@ import {
   type Vec3,
 } from '../../src/reference/phase.ts';
 import { ONE_MINUS_EPSILON_F32 } from '../support/f32.ts';
+import {
+  asVec3,
+  AZIMUTH_FREE,
+  CBRT_SMALL,
+  HG_EVAL_DIRECTIONS,
+  HG_SAMPLE_MU,
+  HG_VALUE,
+  hgSampleWrapper,
+  RAYLEIGH_SAMPLED_MU,
+  SAMPLED_COMPLEMENTS,
+  SAMPLED_MU,
+  sampleArgs,
+  TRIG_DIRECTION,
+  twinHgSample,
+  vec,
+} from '../support/phaseHarness.ts';
 
 const INV_FOUR_PI = 0.0795774715459477;
-
-// ---------------------------------------------------------------------------
-// Tolerances (physics.md §10). The robust HG forms meet 4e-7 relative in numpy
-// float32, where / and sqrt are correctly rounded. WGSL only bounds x / y to
-// 2.5 ULP and sqrt through 1/inverseSqrt (2 + 2.5 ULP). hgEvalTerms then has:
-// d = (1 − |g|)² + 2|g|t to ≈ 2 ULP, √d to ≈ 5.5 ULP, d·√d to ≈ 8 ULP, the
-// numerator (1 − |g|)(1 + |g|)/(4π) to ≈ 2.5 ULP and the division 2.5 ULP:
-// ≈ 13 ULP ≈ 1.6e-6 relative. 4e-6 leaves a margin of 2.5 over that budget
-// (SwiftShader measures ≤ 3 ULP) and still catches cancellation, which costs
-// ≥ 8e-4 (naive f32 at g = 0.99; 10% at g = 0.999, μ = 1).
-// ---------------------------------------------------------------------------
-const HG_VALUE: Tolerance = {
-  relative: 4e-6,
-  reason: '§10: 4e-7 in numpy f32; WGSL / (2.5 ULP) and sqrt (4.5 ULP) give a ≈ 13-ULP budget',
-};
-// Sampled μ: 2.7e-7 absolute in numpy f32 (§2.4). On the GPU each complement is
-// 2·r²·(1 − x)·(1 + |g|x) with r = (1 − |g|)·(1/D): ≈ 4.5 ULP in r (a 2.5-ULP
-// division), ≈ 12 ULP in the product ≈ 1.4e-6 relative, and μ is taken from the
-// smaller complement (≤ 1), so |δμ| ≤ 1.4e-6 + ½ ULP. The published μ(ξ) are for
-// decimal ξ and g; their f32 rounding moves μ by ≤ 2e-8 (|dμ/dξ|·|Δξ| ≤ 4·6e-9).
-const SAMPLED_MU: Tolerance = {
-  absolute: 2e-6,
-  reason: '§2.4: 2.7e-7 in numpy f32, + WGSL 1/D (2.5 ULP) on the smaller complement',
-};
-// Complements 1 ∓ μ: the ≈ 12-ULP (1.4e-6) budget above, relative; 4e-6 as for HG values.
-const SAMPLED_COMPLEMENTS: Tolerance = {
-  relative: 4e-6,
-  reason: '§2.4: 4e-7 in numpy f32; ≈ 12 ULP with the WGSL 2.5-ULP division',
-};
-// Directions: WGSL bounds sin and cos only to an absolute 2^-11 on [−π, π] (the
-// azimuth stays there). After (cos φ, sin φ) is renormalised the azimuth is off by
-// ≤ √2·2^-11 ≈ 6.9e-4 rad, which moves each component of a unit vector by at
-// most that much (SwiftShader is at ≈ 1.9e-4). Next to μ = ±1 a direction also
-// inherits √(2|δμ|) from the absolute error δμ of its cosine: ≤ 5e-4 for the
-// Rayleigh sampler's 1.2e-7 at ξ = 0 (the HG complements are exact there).
-const TRIG_DIRECTION: Tolerance = {
-  absolute: 1e-3,
-  reason: 'WGSL sin/cos: absolute 2^-11 each ⇒ azimuth error ≤ 6.9e-4 rad',
-};
-// What does not depend on the azimuth (μ = −wo·wi, |wi|², z of a sphere sample):
-// a few roundings of O(1) quantities, a dot product of three terms and the
-// 1/(s + n.z) of the basis: ≤ 8 ULP of 1 ≈ 1e-6.
-const AZIMUTH_FREE: Tolerance = {
-  absolute: 2e-6,
-  reason: 'f32 rounding of O(1) terms and 2.5-ULP division, azimuth-independent',
-};
+// Tolerances (HG_VALUE, SAMPLED_MU, …) are derived in tests/support/phaseHarness.ts.
 
 // ---------------------------------------------------------------------------
 // Published values
@@ -240,8 +209,6 @@ describeShaderFunction({
 });
 
 // Vector arguments go through a wrapper (the harness passes array<f32, 3>).
-const vec = (name: string): string => `vec3f(${name}[0], ${name}[1], ${name}[2])`;
-const asVec3 = (v: readonly number[]): Vec3 => [v[0] ?? 0, v[1] ?? 0, v[2] ?? 0];
 const normalize = (v: readonly number[]): Vec3 => {
   const length = Math.hypot(v[0] ?? 0, v[1] ?? 0, v[2] ?? 0);
   return [(v[0] ?? 0) / length, (v[1] ?? 0) / length, (v[2] ?? 0) / length];
@@ -256,18 +223,7 @@ const OBLIQUE_WO = normalize([0.3, -0.5, 0.81]);
 const OBLIQUE_WI = normalize([-0.6, 0.2, 0.77]);
 
 describeShaderFunction({
-  module: 'phase',
-  fn: 'hgEvalDirections',
-  args: ['f32', 'f32[3]', 'f32[3]'],
-  result: 'f32',
-  wrapper: {
-    imports: ['hgEvalDirections'],
-    wgsl: `fn caseUnderTest(g: f32, wo: array<f32, 3>, wi: array<f32, 3>) -> f32 {
-  return hgEvalDirections(g, ${vec('wo')}, ${vec('wi')});
-}`,
-  },
-  twin: (g: number, wo: readonly number[], wi: readonly number[]) =>
-    hgEvalDirections(g, asVec3(wo), asVec3(wi)),
+  ...HG_EVAL_DIRECTIONS,
   tolerance: HG_VALUE,
   cases: [
     {
@@ -327,9 +283,6 @@ const MU_SAMPLES: readonly (readonly [number, readonly number[]])[] = [
   ],
 ];
 
-/** (g, ξ, 1 − ξ) with 1 − ξ the complement of the f32 ξ the GPU sees. */
-const sampleArgs = (g: number, xi: number): number[] => [g, xi, 1 - Math.fround(xi)];
-
 const muSampleCases: ShaderCase[] = [
   ...MU_SAMPLES.flatMap(([g, mus]) =>
     XI_COLUMNS.map((xi, k) => ({
@@ -358,15 +311,7 @@ const muSampleCases: ShaderCase[] = [
 ];
 
 describeShaderFunction({
-  module: 'phase',
-  fn: 'hgSampleMu',
-  args: ['f32', 'f32', 'f32'],
-  result: 'f32',
-  wrapper: {
-    imports: ['hgSampleMu'],
-    wgsl: 'fn caseUnderTest(g: f32, xi: f32, oneMinusXi: f32) -> f32 { return hgSampleMu(g, xi, oneMinusXi).mu; }',
-  },
-  twin: (g: number, xi: number, oneMinusXi: number) => hgSampleMu(g, xi, oneMinusXi).mu,
+  ...HG_SAMPLE_MU,
   tolerance: SAMPLED_MU,
   cases: muSampleCases,
 });
@@ -434,16 +379,6 @@ function directionCases(gs: readonly number[]): ShaderCase[] {
   return cases;
 }
 
-const HG_SAMPLE_WRAPPER = (body: string, result: string) => ({
-  imports: ['hgSample'],
-  wgsl: `fn caseUnderTest(g: f32, wo: array<f32, 3>, u0: f32, u1: f32) -> ${result} {
-  let w = ${vec('wo')};
-  let s = hgSample(g, w, vec2f(u0, u1));
-  ${body}
-}`,
-});
-const twinHgSample = (g: number, wo: readonly number[], u0: number, u1: number) =>
-  hgSample(g, asVec3(wo), [u0, u1]);
 const HG_DIRECTION_GS = [0, 0.3, -0.7, 0.9, 0.999];
 
 describeShaderFunction({
@@ -451,7 +386,7 @@ describeShaderFunction({
   fn: 'hgSample',
   args: ['f32', 'f32[3]', 'f32', 'f32'],
   result: 'vec3f',
-  wrapper: HG_SAMPLE_WRAPPER('return s.wi;', 'vec3f'),
+  wrapper: hgSampleWrapper('return s.wi;', 'vec3f'),
   twin: (g: number, wo: readonly number[], u0: number, u1: number) =>
     twinHgSample(g, wo, u0, u1).wi,
   tolerance: TRIG_DIRECTION,
@@ -464,7 +399,7 @@ describeShaderFunction({
   args: ['f32', 'f32[3]', 'f32', 'f32'],
   result: 'vec2f',
   // μ = −wo·wi and |wi|² do not depend on the azimuth, so they are held tightly.
-  wrapper: HG_SAMPLE_WRAPPER('return vec2f(-dot(w, s.wi), dot(s.wi, s.wi));', 'vec2f'),
+  wrapper: hgSampleWrapper('return vec2f(-dot(w, s.wi), dot(s.wi, s.wi));', 'vec2f'),
   twin: (g: number, wo: readonly number[], u0: number, u1: number) => {
     const { wi } = twinHgSample(g, wo, u0, u1);
     return [
@@ -481,7 +416,7 @@ describeShaderFunction({
   fn: 'hgSample',
   args: ['f32', 'f32[3]', 'f32', 'f32'],
   result: 'f32',
-  wrapper: HG_SAMPLE_WRAPPER('return s.pdf;', 'f32'),
+  wrapper: hgSampleWrapper('return s.pdf;', 'f32'),
   twin: (g: number, wo: readonly number[], u0: number, u1: number) =>
     twinHgSample(g, wo, u0, u1).pdf,
   tolerance: HG_VALUE,
@@ -623,14 +558,6 @@ describeShaderFunction({
   ],
 });
 
-// pow(x, 1/3) = exp2(log2(x)/3) in WGSL: log2 has 2^-21 absolute error on
-// [0.5, 2] and 3 ULP elsewhere, exp2 3 + 2|x| ULP; for |x| ≤ 5 (the range the
-// Rayleigh sampler uses) that is ≤ 8 ULP ≈ 1e-6, and for |x| up to 1e30 the
-// 3-ULP log2 error of ≈ 100 grows to ≈ 1e-5 relative.
-const CBRT_SMALL: Tolerance = {
-  relative: 2e-6,
-  reason: 'WGSL pow = exp2(log2 x / 3): ≤ 8 ULP for |x| ≤ 5',
-};
 describeShaderFunction({
   module: 'phase',
   fn: 'cbrtReal',
@@ -661,9 +588,7 @@ describeShaderFunction({
   args: ['f32'],
   result: 'f32',
   twin: rayleighSampleMu,
-  // Two cube roots of magnitude ≤ 1.7 (≤ 1e-6 relative each, see cbrtReal) summed:
-  // ≤ 4e-6 absolute near ξ = ½ where they cancel to μ ≈ 0.
-  tolerance: { absolute: 4e-6, reason: 'two WGSL cube roots (≤ 2e-6 each) of magnitude ≤ 1.7' },
+  tolerance: RAYLEIGH_SAMPLED_MU,
   cases: [
     { name: 'ξ = 0 gives μ = −1', args: [0], expected: -1 },
     { name: 'ξ = ½ gives μ = 0 (symmetric)', args: [0.5], expected: 0 },

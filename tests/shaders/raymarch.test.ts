@@ -29,7 +29,6 @@ import {
   MARCH_LEFT,
   MARCH_MAX_STEPS,
   MARCH_MIDPOINT,
-  type MarchResult,
   marchRayOffset,
   marchStepCount,
   marchStepOffset,
@@ -37,89 +36,40 @@ import {
   raymarchEmissionAbsorption,
   raymarchEmissionRiemann,
   raymarchLinearized,
-  raymarchOpticalDepth,
 } from '../../src/reference/raymarch.ts';
 import { rngSeed } from '../../src/reference/rng.ts';
 import {
-  type Argument,
-  type ArgumentType,
   describeShaderFunction,
   type ShaderCase,
   type Tolerance,
 } from '../support/shaderHarness.ts';
+import {
+  marchArgs,
+  marchTable,
+  type March,
+  opticalDepthArgs,
+  opticalDepthTable,
+  SIN_ERROR,
+  sigmaUpperBound,
+  sinErrorInSigma,
+} from '../support/marchTables.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 import { F32_MAX, F32_MIN_NORMAL } from '../support/f32.ts';
 
-const SIN_ERROR = 2 ** -11;
 const F32_EPSILON = 2 ** -24;
-
-// A Medium1D crosses the harness as its eight fields; the wrappers rebuild it.
-const MEDIUM_ARGUMENTS: ArgumentType[] = [
-  'u32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'u32',
-  'f32[16]',
-];
-const MEDIUM_PARAMETERS =
-  'kind: u32, sigma0: f32, amplitude: f32, frequency: f32, phase: f32, cellSize: f32, cellCount: u32, cells: array<f32, 16>';
-const MEDIUM_VALUE =
-  'package::medium::Medium1D(kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells)';
-
-function mediumArguments(medium: Medium1D): Argument[] {
-  const cells = Array.from({ length: 16 }, (_, i) => medium.cells[i] ?? 0);
-  return [
-    medium.kind,
-    medium.sigma0,
-    medium.amplitude,
-    medium.frequency,
-    medium.phase,
-    medium.cellSize,
-    medium.cellCount,
-    cells,
-  ];
-}
-
-function mediumFromArguments(args: readonly Argument[]): Medium1D {
-  const [kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells] = args as [
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number[],
-  ];
-  return { kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells };
-}
-
-const asVector = (r: MarchResult): number[] => [
-  r.radiance,
-  r.transmittance,
-  r.steps,
-  r.clampedSteps,
-];
 
 /** Tolerance of one march, from the budget in the file header. */
 function marchTolerance(medium: Medium1D, d: number, steps: number, brightest: number): Tolerance {
   const n = marchStepCount(steps);
-  const sigmaMax =
-    Math.min(Math.max(medium.sigma0, ...medium.cells, 0), 1e18) * (1 + medium.amplitude);
-  const tau = Math.min(sigmaMax * d, 200);
-  const deltaSigma = medium.kind === MEDIUM_SINE ? medium.sigma0 * medium.amplitude * SIN_ERROR : 0;
+  const tau = Math.min(sigmaUpperBound(medium) * d, 200);
+  const deltaSigma = sinErrorInSigma(medium);
   return {
     relative: (4 * n + 2 * tau + 16) * F32_EPSILON,
     absolute: Math.max(4 * deltaSigma * Math.max(d, 1) * Math.max(brightest, 1), F32_MIN_NORMAL),
     reason: `f32 march: (4n + 2τ + 16)·2^-24 relative${deltaSigma > 0 ? '; WGSL sin 2^-11 in σt: 4·δσ·d·max(Le, L_bg) absolute' : ''}`,
   };
 }
-
-type March = typeof raymarchEmissionAbsorption;
 
 interface MarchCase {
   name: string;
@@ -137,64 +87,38 @@ interface MarchCase {
 
 /** Registers a harness table for one of the four march functions. */
 function describeMarch(fn: string, twin: March, cases: readonly MarchCase[]): void {
-  describeShaderFunction({
-    module: 'raymarch',
-    fn,
-    args: [...MEDIUM_ARGUMENTS, 'f32', 'f32', 'f32', 'f32', 'f32', 'u32', 'u32', 'u32'],
-    result: 'vec4f',
-    wrapper: {
-      imports: [fn],
-      wgsl: `fn caseUnderTest(${MEDIUM_PARAMETERS}, emission0: f32, emissionSlope: f32, albedo: f32, background: f32, d: f32, steps: u32, scheme: u32, seed: u32) -> vec4f {
-  var state = seed;
-  let r = ${fn}(${MEDIUM_VALUE}, emission0, emissionSlope, albedo, background, d, steps, scheme, &state);
-  return vec4f(r.radiance, r.transmittance, f32(r.steps), f32(r.clampedSteps));
-}`,
-    },
-    twin: ((...args: Argument[]) => {
-      const [e0, slope, albedo, background, d, steps, scheme, seed] = args.slice(8) as number[];
-      return asVector(
-        twin(
-          mediumFromArguments(args),
-          e0 ?? 0,
-          slope ?? 0,
-          albedo ?? 0,
-          background ?? 0,
-          d ?? 0,
-          steps ?? 0,
-          scheme ?? 0,
-          {
-            value: seed ?? 0,
-          },
-        ),
-      );
-    }) as never,
-    tolerance: { relative: 1e-5, reason: 'overridden per case' },
-    cases: cases.map((c): ShaderCase => ({
-      name: c.name,
-      args: [
-        ...mediumArguments(c.medium),
-        c.emission0,
-        c.emissionSlope,
-        c.albedo,
-        c.background,
-        c.d,
-        c.steps,
-        c.scheme,
-        c.seed,
-      ],
-      ...(c.expected ? { expected: c.expected } : {}),
-      tolerance: marchTolerance(
-        c.medium,
-        c.d,
-        c.steps,
-        Math.max(
+  describeShaderFunction(
+    marchTable(
+      fn,
+      twin,
+      cases.map((c): ShaderCase => ({
+        name: c.name,
+        args: marchArgs(
+          c.medium,
+          c.emission0,
+          c.emissionSlope,
+          c.albedo,
           c.background,
-          linearEmission(c.emission0, c.emissionSlope, 0),
-          linearEmission(c.emission0, c.emissionSlope, c.d),
+          c.d,
+          c.steps,
+          c.scheme,
+          c.seed,
         ),
-      ),
-    })),
-  });
+        ...(c.expected ? { expected: c.expected } : {}),
+        tolerance: marchTolerance(
+          c.medium,
+          c.d,
+          c.steps,
+          Math.max(
+            c.background,
+            linearEmission(c.emission0, c.emissionSlope, 0),
+            linearEmission(c.emission0, c.emissionSlope, c.d),
+          ),
+        ),
+      })),
+      { relative: 1e-5, reason: 'overridden per case' },
+    ),
+  );
 }
 
 // The §3 test problem.
@@ -587,57 +511,42 @@ describeMarch('raymarchEmissionRiemann', raymarchEmissionRiemann, [
   },
 ]);
 
-describeShaderFunction({
-  module: 'raymarch',
-  fn: 'raymarchOpticalDepth',
-  args: [...MEDIUM_ARGUMENTS, 'f32', 'u32', 'u32', 'u32'],
-  result: 'f32',
-  wrapper: {
-    imports: ['raymarchOpticalDepth'],
-    wgsl: `fn caseUnderTest(${MEDIUM_PARAMETERS}, d: f32, steps: u32, scheme: u32, seed: u32) -> f32 {
-  var state = seed;
-  return raymarchOpticalDepth(${MEDIUM_VALUE}, d, steps, scheme, &state);
-}`,
-  },
-  twin: ((...args: Argument[]) => {
-    const [d, steps, scheme, seed] = args.slice(8) as number[];
-    return raymarchOpticalDepth(mediumFromArguments(args), d ?? 0, steps ?? 0, scheme ?? 0, {
-      value: seed ?? 0,
-    });
-  }) as never,
-  // A sum of n f32 terms (n·2^-24 relative); sin's 2^-11 in each σt sample gives
-  // σ0·a·2^-11·d absolute (0.5·2^-11·2 ≈ 4.9e-4 for the §3 problem).
-  tolerance: {
-    relative: 4096 * 2 ** -24,
-    absolute: 5e-4,
-    reason: 'n-term f32 sum; WGSL sin 2^-11 in σt',
-  },
-  cases: [
+describeShaderFunction(
+  opticalDepthTable(
+    [
+      {
+        name: '§3 problem, midpoint N = 1024: τ(0, 2) = 2.0066381',
+        args: opticalDepthArgs(PROBLEM, 2, 1024, MARCH_MIDPOINT, 0),
+        expected: 2.0066381,
+      },
+      {
+        name: 'jittered ray, 1 sample (§9 row 27)',
+        args: opticalDepthArgs(PROBLEM, 2, 1, MARCH_JITTERED_RAY, 12),
+      },
+      {
+        name: 'jittered strata, 8 samples',
+        args: opticalDepthArgs(PROBLEM, 2, 8, MARCH_JITTERED_STRATA, 13),
+      },
+      {
+        name: 'layered grid, midpoint N = 4: exact Σ σ_i h',
+        args: opticalDepthArgs(LAYERS, 2, 4, MARCH_MIDPOINT, 0),
+        expected: 3.5,
+      },
+      {
+        name: 'σt = 1e6 over 1e-6 (§9 row 11): τ = 1',
+        args: opticalDepthArgs(homogeneousMedium(1e6), 1e-6, 3, MARCH_LEFT, 0),
+        expected: 1,
+      },
+    ],
+    // A sum of n f32 terms (n·2^-24 relative); sin's 2^-11 in each σt sample gives
+    // σ0·a·2^-11·d absolute (0.5·2^-11·2 ≈ 4.9e-4 for the §3 problem).
     {
-      name: '§3 problem, midpoint N = 1024: τ(0, 2) = 2.0066381',
-      args: [...mediumArguments(PROBLEM), 2, 1024, MARCH_MIDPOINT, 0],
-      expected: 2.0066381,
+      relative: 4096 * 2 ** -24,
+      absolute: 5e-4,
+      reason: 'n-term f32 sum; WGSL sin 2^-11 in σt',
     },
-    {
-      name: 'jittered ray, 1 sample (§9 row 27)',
-      args: [...mediumArguments(PROBLEM), 2, 1, MARCH_JITTERED_RAY, 12],
-    },
-    {
-      name: 'jittered strata, 8 samples',
-      args: [...mediumArguments(PROBLEM), 2, 8, MARCH_JITTERED_STRATA, 13],
-    },
-    {
-      name: 'layered grid, midpoint N = 4: exact Σ σ_i h',
-      args: [...mediumArguments(LAYERS), 2, 4, MARCH_MIDPOINT, 0],
-      expected: 3.5,
-    },
-    {
-      name: 'σt = 1e6 over 1e-6 (§9 row 11): τ = 1',
-      args: [...mediumArguments(homogeneousMedium(1e6)), 1e-6, 3, MARCH_LEFT, 0],
-      expected: 1,
-    },
-  ],
-});
+  ),
+);
 
 // ---- Statistics of 10⁵ jittered rays on the GPU (§3, §9 row 27) ----
 

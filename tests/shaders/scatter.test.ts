@@ -8,7 +8,6 @@ import { runCompute } from '../../src/gpu/compute.ts';
 import {
   gridMedium,
   homogeneousMedium,
-  MEDIUM_SINE,
   type Medium1D,
   sineMedium,
 } from '../../src/reference/medium.ts';
@@ -24,20 +23,23 @@ import {
   equiangularSample,
   shadowTransmittanceExact,
   singleScatterHomogeneousSlab,
-  singleScatterMarched,
 } from '../../src/reference/scatter.ts';
 import {
-  type Argument,
-  type ArgumentType,
   describeShaderFunction,
   type ShaderCase,
   type Tolerance,
 } from '../support/shaderHarness.ts';
+import {
+  SIN_ERROR,
+  sigmaUpperBound,
+  singleScatterArgs,
+  singleScatterTable,
+  sinErrorInSigma,
+} from '../support/marchTables.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 import { F32_MAX, F32_MIN_NORMAL } from '../support/f32.ts';
 
-const SIN_ERROR = 2 ** -11;
 const F32_EPSILON = 2 ** -24;
 const PHASE_ISOTROPIC = 1 / (4 * Math.PI);
 const EXP_TOLERANCE: Tolerance = {
@@ -119,49 +121,6 @@ describeShaderFunction({
 
 // ---- marched single scattering ----
 
-const MEDIUM_ARGUMENTS: ArgumentType[] = [
-  'u32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'u32',
-  'f32[16]',
-];
-const MEDIUM_PARAMETERS =
-  'kind: u32, sigma0: f32, amplitude: f32, frequency: f32, phase: f32, cellSize: f32, cellCount: u32, cells: array<f32, 16>';
-const MEDIUM_VALUE =
-  'package::medium::Medium1D(kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells)';
-
-function mediumArguments(medium: Medium1D): Argument[] {
-  const cells = Array.from({ length: 16 }, (_, i) => medium.cells[i] ?? 0);
-  return [
-    medium.kind,
-    medium.sigma0,
-    medium.amplitude,
-    medium.frequency,
-    medium.phase,
-    medium.cellSize,
-    medium.cellCount,
-    cells,
-  ];
-}
-
-function mediumFromArguments(args: readonly Argument[]): Medium1D {
-  const [kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells] = args as [
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number[],
-  ];
-  return { kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells };
-}
-
 interface ScatterCase {
   name: string;
   medium: Medium1D;
@@ -185,12 +144,9 @@ interface ScatterCase {
  */
 function scatterTolerance(c: ScatterCase): Tolerance {
   const n = marchStepCount(c.steps);
-  const sigmaMax =
-    Math.min(Math.max(c.medium.sigma0, ...c.medium.cells, 0), 1e18) * (1 + c.medium.amplitude);
   const shadowPath = c.a + c.b * c.length;
-  const tau = Math.min(sigmaMax * (c.length + shadowPath), 400);
-  const deltaSigma =
-    c.medium.kind === MEDIUM_SINE ? c.medium.sigma0 * c.medium.amplitude * SIN_ERROR : 0;
+  const tau = Math.min(sigmaUpperBound(c.medium) * (c.length + shadowPath), 400);
+  const deltaSigma = sinErrorInSigma(c.medium);
   return {
     relative: (4 * n + 2 * tau + 16) * F32_EPSILON,
     absolute: Math.max(
@@ -268,56 +224,28 @@ const SCATTER_CASES: ScatterCase[] = [
   example('steps beyond the cap are reported as 4096', 9000, MARCH_LEFT),
 ];
 
-describeShaderFunction({
-  module: 'scatter',
-  fn: 'singleScatterMarched',
-  args: [...MEDIUM_ARGUMENTS, 'f32', 'f32', 'f32', 'f32', 'f32', 'f32', 'u32', 'u32', 'u32'],
-  result: 'vec4f',
-  wrapper: {
-    imports: ['singleScatterMarched'],
-    wgsl: `fn caseUnderTest(${MEDIUM_PARAMETERS}, albedo: f32, phaseValue: f32, irradiance: f32, a: f32, b: f32, viewLength: f32, steps: u32, scheme: u32, seed: u32) -> vec4f {
-  var state = seed;
-  let r = singleScatterMarched(${MEDIUM_VALUE}, albedo, phaseValue, irradiance, a, b, viewLength, steps, scheme, &state);
-  return vec4f(r.radiance, r.transmittance, f32(r.steps), f32(r.clampedSteps));
-}`,
-  },
-  twin: ((...args: Argument[]) => {
-    const [albedo, phase, irradiance, a, b, length, steps, scheme, seed] = args.slice(
-      8,
-    ) as number[];
-    const r = singleScatterMarched(
-      mediumFromArguments(args),
-      albedo ?? 0,
-      phase ?? 0,
-      irradiance ?? 0,
-      a ?? 0,
-      b ?? 0,
-      length ?? 0,
-      steps ?? 0,
-      scheme ?? 0,
-      { value: seed ?? 0 },
-    );
-    return [r.radiance, r.transmittance, r.steps, r.clampedSteps];
-  }) as never,
-  tolerance: { relative: 1e-5, reason: 'overridden per case' },
-  cases: SCATTER_CASES.map((c): ShaderCase => ({
-    name: c.name,
-    args: [
-      ...mediumArguments(c.medium),
-      c.albedo,
-      c.phase,
-      c.irradiance,
-      c.a,
-      c.b,
-      c.length,
-      c.steps,
-      c.scheme,
-      c.seed,
-    ],
-    ...(c.expected ? { expected: c.expected } : {}),
-    tolerance: scatterTolerance(c),
-  })),
-});
+describeShaderFunction(
+  singleScatterTable(
+    SCATTER_CASES.map((c): ShaderCase => ({
+      name: c.name,
+      args: singleScatterArgs(
+        c.medium,
+        c.albedo,
+        c.phase,
+        c.irradiance,
+        c.a,
+        c.b,
+        c.length,
+        c.steps,
+        c.scheme,
+        c.seed,
+      ),
+      ...(c.expected ? { expected: c.expected } : {}),
+      tolerance: scatterTolerance(c),
+    })),
+    { relative: 1e-5, reason: 'overridden per case' },
+  ),
+);
 
 // ---- equiangular sampling ----
 

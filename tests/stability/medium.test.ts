@@ -9,11 +9,8 @@ import { describe, expect, it } from 'vitest';
 import {
   GRID_DDA_MAX_CELLS,
   gridDensityTrilinear,
-  gridMajorantAlongRay,
   gridMajorantBuild,
   gridMajorantLookup,
-  gridOpticalDepthConstant,
-  gridSegmentInBounds,
   makeDensityGrid,
   type DensityGridData,
   type GridMajorantSegment,
@@ -27,6 +24,9 @@ import {
   gpuOpticalDepthConstant,
   gpuSegmentInBounds,
   type Ray,
+  twinMajorantAlongRay,
+  twinOpticalDepthConstant,
+  twinSegmentInBounds,
 } from '../support/densityGridGpu.ts';
 import { F32_MAX, F32_MIN_SUBNORMAL } from '../support/f32.ts';
 
@@ -54,6 +54,10 @@ const CLOSE_RELATIVE = 2e-7;
 function close(actual: number, expected: number): boolean {
   return actual === expected || Math.abs(actual - expected) <= CLOSE_RELATIVE * Math.abs(expected);
 }
+
+/** A ray as the GPU sees it (rounded to f32). */
+const ray = (origin: Vec3, direction: Vec3, tMin: number, tMax: number): Ray =>
+  f32Ray({ origin, direction, tMin, tMax });
 
 describe('gridDensityTrilinear and gridMajorantLookup on degenerate grids (both implementations)', () => {
   const cases: { name: string; grid: DensityGridData; p: Vec3; expected: number }[] = [
@@ -128,8 +132,6 @@ interface RayCase {
 }
 
 describe('gridMajorantAlongRay: axis-parallel rays, rays on faces, misses, empty segments', () => {
-  const ray = (origin: Vec3, direction: Vec3, tMin: number, tMax: number): Ray =>
-    f32Ray({ origin, direction, tMin, tMax });
   const result = (majorant: number, cellsVisited: number, capped = 0): GridMajorantSegment => ({
     majorant,
     cellsVisited,
@@ -240,7 +242,7 @@ describe('gridMajorantAlongRay: axis-parallel rays, rays on faces, misses, empty
 
   it.each(cases)('$name', async ({ ray: r, expected }) => {
     const [gpu] = await gpuMajorantAlongRay(ROW, [r]);
-    const twin = gridMajorantAlongRay(ROW.grid, ROW.volume, r.origin, r.direction, r.tMin, r.tMax);
+    const twin = twinMajorantAlongRay(ROW, r);
     expect(gpu).toEqual(expected);
     expect(twin).toEqual(expected);
   });
@@ -254,15 +256,11 @@ describe('gridMajorantAlongRay: axis-parallel rays, rays on faces, misses, empty
     const [gZero] = await gpuMajorantAlongRay(zero, [r]);
     const [gHuge] = await gpuMajorantAlongRay(huge, [r]);
     expect(gFlat).toEqual(result(0, 0));
-    expect(gridMajorantAlongRay(flat.grid, flat.volume, r.origin, r.direction, 0, 10)).toEqual(
-      result(0, 0),
-    );
+    expect(twinMajorantAlongRay(flat, r)).toEqual(result(0, 0));
     expect(gZero).toEqual(result(0, 3));
-    expect(gridMajorantAlongRay(zero.grid, zero.volume, r.origin, r.direction, 0, 10)).toEqual(
-      result(0, 3),
-    );
+    expect(twinMajorantAlongRay(zero, r)).toEqual(result(0, 3));
     expect(close(gHuge?.majorant ?? NaN, 1e36)).toBe(true);
-    const twinHuge = gridMajorantAlongRay(huge.grid, huge.volume, r.origin, r.direction, 0, 10);
+    const twinHuge = twinMajorantAlongRay(huge, r);
     expect(close(twinHuge.majorant, 1e36)).toBe(true);
   });
 });
@@ -278,77 +276,77 @@ describe('gridOpticalDepthConstant and gridSegmentInBounds: hard cases (both imp
     {
       name: 'along +x through the unit box, |d| = 2',
       grid: ONE,
-      ray: f32Ray({ origin: [-1, 0.5, 0.5], direction: [2, 0, 0], tMin: -10, tMax: 10 }),
+      ray: ray([-1, 0.5, 0.5], [2, 0, 0], -10, 10),
       tau: 1,
       segment: [0.5, 1],
     },
     {
       name: 'body diagonal: chord √3',
       grid: ONE,
-      ray: f32Ray({ origin: [-1, -1, -1], direction: [1, 1, 1], tMin: 0, tMax: 5 }),
+      ray: ray([-1, -1, -1], [1, 1, 1], 0, 5),
       tau: Math.sqrt(3),
       segment: [1, 2],
     },
     {
       name: 'zero-length segment inside: τ = 0',
       grid: ONE,
-      ray: f32Ray({ origin: [0.5, 0.5, 0.5], direction: [1, 0, 0], tMin: 0, tMax: 0 }),
+      ray: ray([0.5, 0.5, 0.5], [1, 0, 0], 0, 0),
       tau: 0,
       segment: [0, 0],
     },
     {
       name: 'zero direction inside: τ = 0',
       grid: ONE,
-      ray: f32Ray({ origin: [0.5, 0.5, 0.5], direction: [0, 0, 0], tMin: 0, tMax: 4 }),
+      ray: ray([0.5, 0.5, 0.5], [0, 0, 0], 0, 4),
       tau: 0,
       segment: [0, 4],
     },
     {
       name: 'miss parallel to x',
       grid: ONE,
-      ray: f32Ray({ origin: [-1, 2, 0.5], direction: [1, 0, 0], tMin: 0, tMax: 9 }),
+      ray: ray([-1, 2, 0.5], [1, 0, 0], 0, 9),
       tau: 0,
       segment: null,
     },
     {
       name: 'reversed segment',
       grid: ONE,
-      ray: f32Ray({ origin: [-1, 0.5, 0.5], direction: [1, 0, 0], tMin: 3, tMax: 0 }),
+      ray: ray([-1, 0.5, 0.5], [1, 0, 0], 3, 0),
       tau: 0,
       segment: null,
     },
     {
       name: 'all-zero grid',
       grid: ZERO,
-      ray: f32Ray({ origin: [-1, 0.5, 0.5], direction: [1, 0, 0], tMin: 0, tMax: 9 }),
+      ray: ray([-1, 0.5, 0.5], [1, 0, 0], 0, 9),
       tau: 0,
       segment: [1, 2],
     },
     {
       name: 'zero-size bounds: empty',
       grid: FLAT,
-      ray: f32Ray({ origin: [-1, 0, 0.5], direction: [1, 0, 0], tMin: 0, tMax: 9 }),
+      ray: ray([-1, 0, 0.5], [1, 0, 0], 0, 9),
       tau: 0,
       segment: null,
     },
     {
       name: 'negative densityScale and ρ: τ = 0',
       grid: NEGATIVE,
-      ray: f32Ray({ origin: [-1, 0.5, 0.5], direction: [1, 0, 0], tMin: 0, tMax: 9 }),
+      ray: ray([-1, 0.5, 0.5], [1, 0, 0], 0, 9),
       tau: 0,
       segment: [1, 2],
     },
     {
       name: 'huge densityScale·ρ: τ clamped to 1e18 (σt) × chord 1',
       grid: HUGE,
-      ray: f32Ray({ origin: [-1, 0.5, 0.5], direction: [1, 0, 0], tMin: 0, tMax: 9 }),
+      ray: ray([-1, 0.5, 0.5], [1, 0, 0], 0, 9),
       tau: 1e18,
       segment: [1, 2],
     },
     {
       name: 'segment over ±f32 max',
       grid: ONE,
-      ray: f32Ray({ origin: [-1, 0.5, 0.5], direction: [1, 0, 0], tMin: -F32_MAX, tMax: F32_MAX }),
+      ray: ray([-1, 0.5, 0.5], [1, 0, 0], -F32_MAX, F32_MAX),
       tau: 1,
       segment: [1, 2],
     },
@@ -357,15 +355,8 @@ describe('gridOpticalDepthConstant and gridSegmentInBounds: hard cases (both imp
   it.each(cases)('$name', async ({ grid, ray: r, tau, segment }) => {
     const [gpuTau] = await gpuOpticalDepthConstant(grid, [r]);
     const [gpuSegment] = await gpuSegmentInBounds(grid, [r]);
-    const twinTau = gridOpticalDepthConstant(
-      grid.grid,
-      grid.volume,
-      r.origin,
-      r.direction,
-      r.tMin,
-      r.tMax,
-    );
-    const twinSegment = gridSegmentInBounds(grid.grid, r.origin, r.direction, r.tMin, r.tMax);
+    const twinTau = twinOpticalDepthConstant(grid, r);
+    const twinSegment = twinSegmentInBounds(grid, r);
     expect(close(gpuTau ?? NaN, tau), `GPU τ ${gpuTau}`).toBe(true);
     expect(close(twinTau, tau), `twin τ ${twinTau}`).toBe(true);
     for (const [name, s] of [
@@ -408,7 +399,7 @@ describe('fuzz: f32 extremes never give NaN, Inf, negative values or more than t
   const vec = fc.tuple(extremes, extremes, extremes);
   const rays = fc
     .sample(fc.tuple(vec, vec, extremes, extremes), { numRuns: 512, seed: 20261124 })
-    .map(([origin, direction, tMin, tMax]) => f32Ray({ origin, direction, tMin, tMax }));
+    .map(([origin, direction, tMin, tMax]) => ray(origin, direction, tMin, tMax));
   const grid = makeDensityGrid(
     Array.from({ length: 27 }, (_, i) => (i % 5) * 0.5),
     [3, 3, 3],
@@ -436,22 +427,8 @@ describe('fuzz: f32 extremes never give NaN, Inf, negative values or more than t
       expect([0, 1], label).toContain(m?.capped);
       const tau = taus[i] ?? NaN;
       expect(Number.isFinite(tau) && tau >= 0, `${label} τ ${tau}`).toBe(true);
-      const twin = gridMajorantAlongRay(
-        majorant.grid,
-        majorant.volume,
-        r.origin,
-        r.direction,
-        r.tMin,
-        r.tMax,
-      );
-      const twinTau = gridOpticalDepthConstant(
-        grid.grid,
-        grid.volume,
-        r.origin,
-        r.direction,
-        r.tMin,
-        r.tMax,
-      );
+      const twin = twinMajorantAlongRay(majorant, r);
+      const twinTau = twinOpticalDepthConstant(grid, r);
       expect(Number.isFinite(twin.majorant) && twin.majorant >= 0, `${label} twin majorant`).toBe(
         true,
       );

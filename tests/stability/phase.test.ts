@@ -30,23 +30,27 @@ import {
   F32_MIN_SUBNORMAL,
   ONE_MINUS_EPSILON_F32,
 } from '../support/f32.ts';
+import {
+  asVec3,
+  CBRT_SMALL,
+  HG_EVAL_DIRECTIONS,
+  HG_SAMPLE_MU,
+  HG_VALUE,
+  hgSampleWrapper,
+  RAYLEIGH_SAMPLED_MU,
+  SAMPLED_MU,
+  sampleArgs,
+  twinHgSample,
+  vec,
+} from '../support/phaseHarness.ts';
 
-// Tolerances: the budgets derived in tests/shaders/phase.test.ts (physics.md §10).
-const HG_VALUE: Tolerance = {
-  relative: 4e-6,
-  reason: '§10: 4e-7 in numpy f32; WGSL / (2.5 ULP) and sqrt (4.5 ULP) give a ≈ 13-ULP budget',
-};
-const SAMPLED_MU: Tolerance = {
-  absolute: 2e-6,
-  reason: '§2.4: 2.7e-7 in numpy f32, + WGSL 1/D (2.5 ULP) on the smaller complement',
-};
+// Tolerances: the budgets derived in tests/support/phaseHarness.ts (physics.md §10).
 const EXACT: Tolerance = {
   ulps: 0,
   reason: 'the zero complement is exactly 0, so μ = ∓1 exactly (§2.4)',
 };
 
 const f = Math.fround;
-const asVec3 = (v: readonly number[]): Vec3 => [v[0] ?? 0, v[1] ?? 0, v[2] ?? 0];
 const G_MAX = HG_MAX_ABS_G;
 /** HG endpoint closed forms (§2.2): p(1) = (1+g)/(4π(1−g)²), p(−1) = (1−g)/(4π(1+g)²). */
 const hgForwardPeak = (g: number): number => (1 + g) / (4 * Math.PI * (1 - g) ** 2);
@@ -138,18 +142,7 @@ describeShaderFunction({
 });
 
 describeShaderFunction({
-  module: 'phase',
-  fn: 'hgEvalDirections',
-  args: ['f32', 'f32[3]', 'f32[3]'],
-  result: 'f32',
-  wrapper: {
-    imports: ['hgEvalDirections'],
-    wgsl: `fn caseUnderTest(g: f32, wo: array<f32, 3>, wi: array<f32, 3>) -> f32 {
-  return hgEvalDirections(g, vec3f(wo[0], wo[1], wo[2]), vec3f(wi[0], wi[1], wi[2]));
-}`,
-  },
-  twin: (g: number, wo: readonly number[], wi: readonly number[]) =>
-    hgEvalDirections(g, asVec3(wo), asVec3(wi)),
+  ...HG_EVAL_DIRECTIONS,
   tolerance: HG_VALUE,
   cases: [
     {
@@ -190,7 +183,6 @@ describe('§9 rows 1, 2, 5: what goes wrong otherwise (float32 emulation of the 
 // ---------------------------------------------------------------------------
 // Rows 6–9, 24: HG sampling
 // ---------------------------------------------------------------------------
-const sampleArgs = (g: number, xi: number): number[] => [g, xi, 1 - f(xi)];
 const endpointCases: ShaderCase[] = [-0.9999, -0.5, 0, 1e-7, 0.3, 0.999, 0.9999].flatMap((g) => [
   {
     name: `§9 row 7: g = ${g}, ξ = 0 → μ = −1 exactly`,
@@ -207,15 +199,7 @@ const endpointCases: ShaderCase[] = [-0.9999, -0.5, 0, 1e-7, 0.3, 0.999, 0.9999]
 ]);
 
 describeShaderFunction({
-  module: 'phase',
-  fn: 'hgSampleMu',
-  args: ['f32', 'f32', 'f32'],
-  result: 'f32',
-  wrapper: {
-    imports: ['hgSampleMu'],
-    wgsl: 'fn caseUnderTest(g: f32, xi: f32, oneMinusXi: f32) -> f32 { return hgSampleMu(g, xi, oneMinusXi).mu; }',
-  },
-  twin: (g: number, xi: number, oneMinusXi: number) => hgSampleMu(g, xi, oneMinusXi).mu,
+  ...HG_SAMPLE_MU,
   tolerance: SAMPLED_MU,
   cases: [
     {
@@ -312,15 +296,7 @@ describe('§9 row 7 over a sweep of g: the endpoints are exact on both sides', (
   const gs = Array.from({ length: 199 }, (_, k) => (k - 99) / 100);
   it('ξ = 0 → μ = −1 and ξ = 1 → μ = +1 exactly for g = −0.99, −0.98, …, 0.99', async () => {
     const outcomes = await evaluateTable({
-      module: 'phase',
-      fn: 'hgSampleMu',
-      args: ['f32', 'f32', 'f32'],
-      result: 'f32',
-      wrapper: {
-        imports: ['hgSampleMu'],
-        wgsl: 'fn caseUnderTest(g: f32, xi: f32, oneMinusXi: f32) -> f32 { return hgSampleMu(g, xi, oneMinusXi).mu; }',
-      },
-      twin: (g: number, xi: number, oneMinusXi: number) => hgSampleMu(g, xi, oneMinusXi).mu,
+      ...HG_SAMPLE_MU,
       tolerance: EXACT,
       cases: gs.flatMap((g) => [
         { name: `g = ${g}, ξ = 0`, args: sampleArgs(g, 0) },
@@ -400,7 +376,7 @@ describeShaderFunction({
   args: ['f32'],
   result: 'f32',
   twin: rayleighSampleMu,
-  tolerance: { absolute: 4e-6, reason: 'two WGSL cube roots (≤ 2e-6 each) of magnitude ≤ 1.7' },
+  tolerance: RAYLEIGH_SAMPLED_MU,
   cases: [0, 0.01, 0.1, 0.25, 0.5, 0.75, 0.9, ONE_MINUS_EPSILON_F32, 1].map((xi) => ({
     name: `§9 row 25: ξ = ${xi}, the radicand z − √(z²+1) < 0 needs ∛ of a negative number`,
     args: [xi],
@@ -414,7 +390,7 @@ describeShaderFunction({
   args: ['f32'],
   result: 'f32',
   twin: cbrtReal,
-  tolerance: { relative: 2e-6, reason: 'WGSL pow = exp2(log2 x / 3): ≤ 8 ULP for |x| ≤ 5' },
+  tolerance: CBRT_SMALL,
   cases: [
     {
       name: '§9 row 25: ∛−8 = −2 (pow(−8, 1/3) is NaN or indeterminate)',
@@ -611,15 +587,9 @@ describe('fuzz over f32 extremes: never NaN or Inf, μ ∈ [−1, 1], p ≥ 0 (W
       ...common,
       module: 'phase',
       fn: 'hgSample',
-      wrapper: {
-        imports: ['hgSample'],
-        wgsl: `fn caseUnderTest(g: f32, wo: array<f32, 3>, u0: f32, u1: f32) -> vec4f {
-  let s = hgSample(g, vec3f(wo[0], wo[1], wo[2]), vec2f(u0, u1));
-  return vec4f(s.wi, s.pdf);
-}`,
-      },
+      wrapper: hgSampleWrapper('return vec4f(s.wi, s.pdf);', 'vec4f'),
       twin: (g: number, wo: readonly number[], u0: number, u1: number) => {
-        const s = hgSample(g, asVec3(wo), [u0, u1]);
+        const s = twinHgSample(g, wo, u0, u1);
         return [...s.wi, s.pdf];
       },
       cases: inputs.map(([g, wo, u0, u1], i) => ({ name: `fuzz ${i}`, args: [g, wo, u0, u1] })),
@@ -631,7 +601,7 @@ describe('fuzz over f32 extremes: never NaN or Inf, μ ∈ [−1, 1], p ≥ 0 (W
       wrapper: {
         imports: ['rayleighSample'],
         wgsl: `fn caseUnderTest(_g: f32, wo: array<f32, 3>, u0: f32, u1: f32) -> vec4f {
-  let s = rayleighSample(vec3f(wo[0], wo[1], wo[2]), vec2f(u0, u1));
+  let s = rayleighSample(${vec('wo')}, vec2f(u0, u1));
   return vec4f(s.wi, s.pdf);
 }`,
       },

@@ -4,142 +4,32 @@
 // (emission ≥ 0), and the reported step count is marchStepCount(steps).
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import {
-  gridMedium,
-  homogeneousMedium,
-  type Medium1D,
-  sineMedium,
-} from '../../src/reference/medium.ts';
+import { gridMedium, homogeneousMedium, sineMedium } from '../../src/reference/medium.ts';
 import {
   MARCH_JITTERED_RAY,
   MARCH_LEFT,
   MARCH_MAX_STEPS,
   MARCH_MIDPOINT,
-  type MarchResult,
   marchStepCount,
   oneMinusExpOverX,
   raymarchEmissionAbsorption,
   raymarchEmissionRiemann,
   raymarchLinearized,
-  raymarchOpticalDepth,
 } from '../../src/reference/raymarch.ts';
 import { rngSeed } from '../../src/reference/rng.ts';
 import {
-  type Argument,
-  type ArgumentType,
   describeShaderFunction,
   evaluateTable,
   type ShaderCase,
-  type ShaderFunctionTable,
 } from '../support/shaderHarness.ts';
+import {
+  marchArgs,
+  marchTable,
+  type March,
+  opticalDepthArgs,
+  opticalDepthTable,
+} from '../support/marchTables.ts';
 import { F32_MAX, F32_MIN_NORMAL, F32_MIN_SUBNORMAL } from '../support/f32.ts';
-
-const MEDIUM_ARGUMENTS: ArgumentType[] = [
-  'u32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'u32',
-  'f32[16]',
-];
-const MEDIUM_PARAMETERS =
-  'kind: u32, sigma0: f32, amplitude: f32, frequency: f32, phase: f32, cellSize: f32, cellCount: u32, cells: array<f32, 16>';
-const MEDIUM_VALUE =
-  'package::medium::Medium1D(kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells)';
-
-function mediumArguments(medium: Medium1D): Argument[] {
-  const cells = Array.from({ length: 16 }, (_, i) => medium.cells[i] ?? 0);
-  return [
-    medium.kind,
-    medium.sigma0,
-    medium.amplitude,
-    medium.frequency,
-    medium.phase,
-    medium.cellSize,
-    medium.cellCount,
-    cells,
-  ];
-}
-
-function mediumFromArguments(args: readonly Argument[]): Medium1D {
-  const [kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells] = args as [
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number[],
-  ];
-  return { kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells };
-}
-
-type March = typeof raymarchEmissionAbsorption;
-
-/** A harness table for one march function; args: medium, e0, slope, albedo, L_bg, d, steps, scheme, seed. */
-function marchTable(
-  fn: string,
-  twin: March,
-  cases: ShaderFunctionTable['cases'],
-  tolerance: ShaderFunctionTable['tolerance'],
-): ShaderFunctionTable {
-  return {
-    module: 'raymarch',
-    fn,
-    args: [...MEDIUM_ARGUMENTS, 'f32', 'f32', 'f32', 'f32', 'f32', 'u32', 'u32', 'u32'],
-    result: 'vec4f',
-    wrapper: {
-      imports: [fn],
-      wgsl: `fn caseUnderTest(${MEDIUM_PARAMETERS}, emission0: f32, emissionSlope: f32, albedo: f32, background: f32, d: f32, steps: u32, scheme: u32, seed: u32) -> vec4f {
-  var state = seed;
-  let r = ${fn}(${MEDIUM_VALUE}, emission0, emissionSlope, albedo, background, d, steps, scheme, &state);
-  return vec4f(r.radiance, r.transmittance, f32(r.steps), f32(r.clampedSteps));
-}`,
-    },
-    twin: ((...args: Argument[]) => {
-      const [e0, slope, albedo, background, d, steps, scheme, seed] = args.slice(8) as number[];
-      const r: MarchResult = twin(
-        mediumFromArguments(args),
-        e0 ?? 0,
-        slope ?? 0,
-        albedo ?? 0,
-        background ?? 0,
-        d ?? 0,
-        steps ?? 0,
-        scheme ?? 0,
-        { value: seed ?? 0 },
-      );
-      return [r.radiance, r.transmittance, r.steps, r.clampedSteps];
-    }) as never,
-    tolerance,
-    cases,
-  };
-}
-
-const marchArgs = (
-  medium: Medium1D,
-  e0: number,
-  slope: number,
-  albedo: number,
-  background: number,
-  d: number,
-  steps: number,
-  scheme: number,
-  seed = 0,
-): Argument[] => [
-  ...mediumArguments(medium),
-  e0,
-  slope,
-  albedo,
-  background,
-  d,
-  steps,
-  scheme,
-  seed,
-];
 
 // Homogeneous media only below: the f32 budget is n steps of a few ULP (no sin).
 const STEP_BUDGET = {
@@ -244,32 +134,16 @@ describe('§9 row 27: jittered ray-marched transmittance with 1 sample is biased
   it('mean of exp(−τ̂) over 20 000 seeds = 0.172054 (5 SE + f32 budget) on the GPU and the twin, above T by more than that', async () => {
     const rays = 20_000;
     const medium = sineMedium(1, 0.5, 3);
-    const outcomes = await evaluateTable({
-      module: 'raymarch',
-      fn: 'raymarchOpticalDepth',
-      args: [...MEDIUM_ARGUMENTS, 'f32', 'u32', 'u32', 'u32'],
-      result: 'f32',
-      wrapper: {
-        imports: ['raymarchOpticalDepth'],
-        wgsl: `fn caseUnderTest(${MEDIUM_PARAMETERS}, d: f32, steps: u32, scheme: u32, seed: u32) -> f32 {
-  var state = seed;
-  return exp(-raymarchOpticalDepth(${MEDIUM_VALUE}, d, steps, scheme, &state));
-}`,
-      },
-      twin: ((...args: Argument[]) => {
-        const [d, steps, scheme, seed] = args.slice(8) as number[];
-        return Math.exp(
-          -raymarchOpticalDepth(mediumFromArguments(args), d ?? 0, steps ?? 0, scheme ?? 0, {
-            value: seed ?? 0,
-          }),
-        );
-      }) as never,
-      tolerance: { relative: 1e-3, reason: 'unused here' },
-      cases: Array.from({ length: rays }, (_, i) => ({
-        name: `ray ${i}`,
-        args: [...mediumArguments(medium), 2, 1, MARCH_JITTERED_RAY, rngSeed(i, 27)],
-      })),
-    });
+    const outcomes = await evaluateTable(
+      opticalDepthTable(
+        Array.from({ length: rays }, (_, i) => ({
+          name: `ray ${i}`,
+          args: opticalDepthArgs(medium, 2, 1, MARCH_JITTERED_RAY, rngSeed(i, 27)),
+        })),
+        { relative: 1e-3, reason: 'unused here' },
+        'transmittance',
+      ),
+    );
     for (const side of ['gpu', 'twin'] as const) {
       const values = outcomes.map((o) => o[side][0] ?? NaN);
       const mean = values.reduce((a, b) => a + b, 0) / rays;
@@ -355,30 +229,15 @@ describe('fuzz: every march stays finite with T ∈ [0, 1] and radiance ≥ 0, o
   }
 
   it('raymarchOpticalDepth: fuzzed media, τ̂ finite and ≥ 0', async () => {
-    const outcomes = await evaluateTable({
-      module: 'raymarch',
-      fn: 'raymarchOpticalDepth',
-      args: [...MEDIUM_ARGUMENTS, 'f32', 'u32', 'u32', 'u32'],
-      result: 'f32',
-      wrapper: {
-        imports: ['raymarchOpticalDepth'],
-        wgsl: `fn caseUnderTest(${MEDIUM_PARAMETERS}, d: f32, steps: u32, scheme: u32, seed: u32) -> f32 {
-  var state = seed;
-  return raymarchOpticalDepth(${MEDIUM_VALUE}, d, steps, scheme, &state);
-}`,
-      },
-      twin: ((...args: Argument[]) => {
-        const [d, steps, scheme, seed] = args.slice(8) as number[];
-        return raymarchOpticalDepth(mediumFromArguments(args), d ?? 0, steps ?? 0, scheme ?? 0, {
-          value: seed ?? 0,
-        });
-      }) as never,
-      tolerance: { relative: 1, reason: 'invariants only' },
-      cases: samples.map(([m, , , , , d, steps, scheme, seed], i) => ({
-        name: `fuzz ${i}`,
-        args: [...mediumArguments(m), d, steps, scheme, seed],
-      })),
-    });
+    const outcomes = await evaluateTable(
+      opticalDepthTable(
+        samples.map(([m, , , , , d, steps, scheme, seed], i) => ({
+          name: `fuzz ${i}`,
+          args: opticalDepthArgs(m, d, steps, scheme, seed),
+        })),
+        { relative: 1, reason: 'invariants only' },
+      ),
+    );
     for (const outcome of outcomes) {
       for (const value of [outcome.gpu[0] ?? NaN, outcome.twin[0] ?? NaN]) {
         expect(Number.isFinite(value)).toBe(true);

@@ -4,25 +4,15 @@
 // fuzz over f32 extremes: never NaN or Inf, radiance and pdf ≥ 0, T ∈ [0, 1].
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import {
-  gridMedium,
-  homogeneousMedium,
-  type Medium1D,
-  sineMedium,
-} from '../../src/reference/medium.ts';
+import { gridMedium, homogeneousMedium, sineMedium } from '../../src/reference/medium.ts';
 import { MARCH_MAX_STEPS, MARCH_MIDPOINT, marchStepCount } from '../../src/reference/raymarch.ts';
 import {
   equiangularPdf,
   equiangularSample,
   singleScatterHomogeneousSlab,
-  singleScatterMarched,
 } from '../../src/reference/scatter.ts';
-import {
-  type Argument,
-  type ArgumentType,
-  describeShaderFunction,
-  evaluateTable,
-} from '../support/shaderHarness.ts';
+import { describeShaderFunction, evaluateTable } from '../support/shaderHarness.ts';
+import { singleScatterArgs, singleScatterTable } from '../support/marchTables.ts';
 import { F32_MAX, F32_MIN_NORMAL, F32_MIN_SUBNORMAL } from '../support/f32.ts';
 
 describeShaderFunction({
@@ -123,49 +113,6 @@ describeShaderFunction({
     { name: 'negative h is 0: pdf 0', args: [-1, -1, 1, 0], expected: 0 },
   ],
 });
-
-const MEDIUM_ARGUMENTS: ArgumentType[] = [
-  'u32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'f32',
-  'u32',
-  'f32[16]',
-];
-const MEDIUM_PARAMETERS =
-  'kind: u32, sigma0: f32, amplitude: f32, frequency: f32, phase: f32, cellSize: f32, cellCount: u32, cells: array<f32, 16>';
-const MEDIUM_VALUE =
-  'package::medium::Medium1D(kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells)';
-
-function mediumArguments(medium: Medium1D): Argument[] {
-  const cells = Array.from({ length: 16 }, (_, i) => medium.cells[i] ?? 0);
-  return [
-    medium.kind,
-    medium.sigma0,
-    medium.amplitude,
-    medium.frequency,
-    medium.phase,
-    medium.cellSize,
-    medium.cellCount,
-    cells,
-  ];
-}
-
-function mediumFromArguments(args: readonly Argument[]): Medium1D {
-  const [kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells] = args as [
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number,
-    number[],
-  ];
-  return { kind, sigma0, amplitude, frequency, phase, cellSize, cellCount, cells };
-}
 
 describe('fuzz: single scattering and equiangular sampling stay finite and non-negative', () => {
   const extremes = fc.oneof(
@@ -285,43 +232,12 @@ describe('fuzz: single scattering and equiangular sampling stay finite and non-n
       0,
     ]);
     const all = [...samples, ...extremeCases];
-    const outcomes = await evaluateTable({
-      module: 'scatter',
-      fn: 'singleScatterMarched',
-      args: [...MEDIUM_ARGUMENTS, 'f32', 'f32', 'f32', 'f32', 'f32', 'f32', 'u32', 'u32', 'u32'],
-      result: 'vec4f',
-      wrapper: {
-        imports: ['singleScatterMarched'],
-        wgsl: `fn caseUnderTest(${MEDIUM_PARAMETERS}, albedo: f32, phaseValue: f32, irradiance: f32, a: f32, b: f32, viewLength: f32, steps: u32, scheme: u32, seed: u32) -> vec4f {
-  var state = seed;
-  let r = singleScatterMarched(${MEDIUM_VALUE}, albedo, phaseValue, irradiance, a, b, viewLength, steps, scheme, &state);
-  return vec4f(r.radiance, r.transmittance, f32(r.steps), f32(r.clampedSteps));
-}`,
-      },
-      twin: ((...args: Argument[]) => {
-        const [albedo, phase, irradiance, a, b, length, steps, scheme, seed] = args.slice(
-          8,
-        ) as number[];
-        const r = singleScatterMarched(
-          mediumFromArguments(args),
-          albedo ?? 0,
-          phase ?? 0,
-          irradiance ?? 0,
-          a ?? 0,
-          b ?? 0,
-          length ?? 0,
-          steps ?? 0,
-          scheme ?? 0,
-          { value: seed ?? 0 },
-        );
-        return [r.radiance, r.transmittance, r.steps, r.clampedSteps];
-      }) as never,
-      tolerance: { relative: 1, reason: 'invariants only' },
-      cases: all.map(([m, albedo, phase, irradiance, a, b, length, steps, scheme, seed], i) => ({
-        name: `fuzz ${i}`,
-        args: [...mediumArguments(m), albedo, phase, irradiance, a, b, length, steps, scheme, seed],
-      })),
-    });
+    const outcomes = await evaluateTable(
+      singleScatterTable(
+        all.map((args, i) => ({ name: `fuzz ${i}`, args: singleScatterArgs(...args) })),
+        { relative: 1, reason: 'invariants only' },
+      ),
+    );
     outcomes.forEach((outcome, i) => {
       const steps = all[i]?.[7] ?? 0;
       for (const [radiance, transmittance, taken] of [outcome.gpu, outcome.twin]) {

@@ -25,34 +25,29 @@ import {
   deltaTrackingVariance,
   ratioTrackingVarianceHomogeneous,
   sampleFreeFlight,
-  transmittanceDeltaTracking,
-  transmittanceRatioTracking,
-  transmittanceResidualRatioTracking,
   transmittanceTrackLength,
-  transmittanceUnbiasedRayMarching,
-  type TransmittanceEstimate,
 } from '../../src/reference/tracking.ts';
 import {
+  homogeneousMedium,
   MEDIUM_GRID,
   MEDIUM_HOMOGENEOUS,
-  MEDIUM_SINE,
   type Medium1D,
+  sineMedium,
 } from '../../src/reference/medium.ts';
-import { rngNextFloat, rngSeed, type RngState } from '../../src/reference/rng.ts';
+import { rngSeed } from '../../src/reference/rng.ts';
+import {
+  ESTIMATORS,
+  packWalkSetup,
+  twinWalker,
+  WALK_SETUP_WORDS,
+  WALK_WGSL,
+  type WalkSetup,
+} from '../support/trackingKernel.ts';
 
-const ESTIMATORS = ['delta', 'ratio', 'residual', 'unbiasedRayMarching', 'trackLength'] as const;
-type EstimatorName = (typeof ESTIMATORS)[number];
-
-interface StabilityCase {
-  estimator: EstimatorName;
-  medium: Medium1D;
-  d: number;
-  /** σ̄ (σ̄r for residual ratio tracking). */
-  sigmaMaj: number;
-  sigmaControl?: number;
+/** A setup run as `walks` walks, walk w seeded with rngSeed(w, frame). */
+interface StabilityCase extends WalkSetup {
   frame: number;
   walks: number;
-  maxSteps?: number;
 }
 
 interface Outcome {
@@ -66,38 +61,17 @@ interface Outcome {
   state: number;
 }
 
-const CASE_WORDS = 30;
+const CASE_WORDS = WALK_SETUP_WORDS + 2;
 const OUTCOME_WORDS = 7;
 
 const KERNEL = `
-import package::medium::Medium1D;
-import package::rng::{rngNextFloat, rngSeed};
-import package::tracking::{
-  FREE_FLIGHT_NEVER,
-  TransmittanceEstimate,
-  transmittanceDeltaTracking,
-  transmittanceRatioTracking,
-  transmittanceResidualRatioTracking,
-  transmittanceTrackLength,
-  transmittanceUnbiasedRayMarching,
-};
-
+import package::rng::rngSeed;
+import package::tracking::FREE_FLIGHT_NEVER;
+${WALK_WGSL}
 struct StabilityCase {
-  estimator: u32,
-  kind: u32,
-  sigma0: f32,
-  amplitude: f32,
-  frequency: f32,
-  phase: f32,
-  cellSize: f32,
-  cellCount: u32,
-  cells: array<f32, 16>,
-  d: f32,
-  sigmaMaj: f32,
-  sigmaControl: f32,
+  setup: WalkSetup,
   frame: u32,
   walks: u32,
-  maxSteps: u32,
 }
 
 @group(0) @binding(0) var<storage, read> cases: array<StabilityCase>;
@@ -110,7 +84,6 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     return;
   }
   let c = cases[i];
-  let medium = Medium1D(c.kind, c.sigma0, c.amplitude, c.frequency, c.phase, c.cellSize, c.cellCount, c.cells);
   var sum = 0.0;
   var lo = FREE_FLIGHT_NEVER;
   var hi = -FREE_FLIGHT_NEVER;
@@ -120,14 +93,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
   var state = 0u;
   for (var w = 0u; w < c.walks; w++) {
     state = rngSeed(w, c.frame);
-    var r = TransmittanceEstimate(1.0, 0u, 0u);
-    switch c.estimator {
-      case 0u: { r = transmittanceDeltaTracking(medium, c.d, c.sigmaMaj, &state, c.maxSteps); }
-      case 1u: { r = transmittanceRatioTracking(medium, c.d, c.sigmaMaj, &state, c.maxSteps); }
-      case 2u: { r = transmittanceResidualRatioTracking(medium, c.d, c.sigmaControl, c.sigmaMaj, &state, c.maxSteps); }
-      case 3u: { r = transmittanceUnbiasedRayMarching(medium, c.d, c.sigmaMaj, &state, c.maxSteps); }
-      default: { r.estimate = transmittanceTrackLength(c.sigma0, c.d, rngNextFloat(&state)); }
-    }
+    let r = estimateTransmittance(c.setup, &state);
     sum += r.estimate;
     lo = min(lo, r.estimate);
     hi = max(hi, r.estimate);
@@ -148,24 +114,11 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
 
 function packCases(cases: readonly StabilityCase[]): Uint32Array {
   const words = new Uint32Array(cases.length * CASE_WORDS);
-  const floats = new Float32Array(words.buffer);
   cases.forEach((c, index) => {
     const o = index * CASE_WORDS;
-    words[o] = ESTIMATORS.indexOf(c.estimator);
-    words[o + 1] = c.medium.kind;
-    floats[o + 2] = c.medium.sigma0;
-    floats[o + 3] = c.medium.amplitude;
-    floats[o + 4] = c.medium.frequency;
-    floats[o + 5] = c.medium.phase;
-    floats[o + 6] = c.medium.cellSize;
-    words[o + 7] = c.medium.cellCount;
-    for (let k = 0; k < 16; k++) floats[o + 8 + k] = c.medium.cells[k] ?? 0;
-    floats[o + 24] = c.d;
-    floats[o + 25] = c.sigmaMaj;
-    floats[o + 26] = c.sigmaControl ?? 0;
-    words[o + 27] = c.frame;
-    words[o + 28] = c.walks;
-    words[o + 29] = c.maxSteps ?? TRACKING_MAX_STEPS;
+    packWalkSetup(words, o, c);
+    words[o + WALK_SETUP_WORDS] = c.frame;
+    words[o + WALK_SETUP_WORDS + 1] = c.walks;
   });
   return words;
 }
@@ -196,44 +149,7 @@ async function runGpu(cases: readonly StabilityCase[]): Promise<Outcome[]> {
 
 /** The same case on the twin, with every input rounded to f32 as the GPU sees it. */
 function runTwin(c: StabilityCase): Outcome {
-  const f = Math.fround;
-  const medium: Medium1D = {
-    ...c.medium,
-    sigma0: f(c.medium.sigma0),
-    amplitude: f(c.medium.amplitude),
-    frequency: f(c.medium.frequency),
-    phase: f(c.medium.phase),
-    cellSize: f(c.medium.cellSize),
-    cells: c.medium.cells.map(f),
-  };
-  const d = f(c.d);
-  const sigmaMaj = f(c.sigmaMaj);
-  const maxSteps = c.maxSteps ?? TRACKING_MAX_STEPS;
-  const walk = (state: RngState): TransmittanceEstimate => {
-    switch (c.estimator) {
-      case 'delta':
-        return transmittanceDeltaTracking(medium, d, sigmaMaj, state, maxSteps);
-      case 'ratio':
-        return transmittanceRatioTracking(medium, d, sigmaMaj, state, maxSteps);
-      case 'residual':
-        return transmittanceResidualRatioTracking(
-          medium,
-          d,
-          f(c.sigmaControl ?? 0),
-          sigmaMaj,
-          state,
-          maxSteps,
-        );
-      case 'unbiasedRayMarching':
-        return transmittanceUnbiasedRayMarching(medium, d, sigmaMaj, state, maxSteps);
-      case 'trackLength':
-        return {
-          estimate: transmittanceTrackLength(medium.sigma0, d, rngNextFloat(state)),
-          lookups: 0,
-          capped: 0,
-        };
-    }
-  };
+  const walk = twinWalker(c);
   const outcome: Outcome = {
     sum: 0,
     min: Infinity,
@@ -257,17 +173,6 @@ function runTwin(c: StabilityCase): Outcome {
   return outcome;
 }
 
-const homogeneous = (sigmaT: number): Medium1D => ({
-  kind: MEDIUM_HOMOGENEOUS,
-  sigma0: sigmaT,
-  amplitude: 0,
-  frequency: 0,
-  phase: 0,
-  cellSize: 0,
-  cellCount: 0,
-  cells: [],
-});
-
 // ---------------------------------------------------------------------------
 // Named hard cases.
 
@@ -288,15 +193,15 @@ function expectMean(outcome: Outcome, walks: number, expected: number, variance:
 }
 
 const WALKS = 4096;
-const empty = homogeneous(0);
-const dense = homogeneous(2);
+const empty = homogeneousMedium(0);
+const dense = homogeneousMedium(2);
 
 const NAMED: NamedCase[] = [
   {
     name: '§9 row 12: ratio tracking with σ̄ = σt = 1e6, d = 1 gives 0 after exactly one lookup (early exit)',
     input: {
       estimator: 'ratio',
-      medium: homogeneous(1e6),
+      medium: homogeneousMedium(1e6),
       d: 1,
       sigmaMaj: 1e6,
       frame: 12,
@@ -416,7 +321,7 @@ const NAMED: NamedCase[] = [
     name: '§9 row 16: the longest free path from the stream is finite: track length through d = 16 with σt = 1 transmits sometimes, never NaN',
     input: {
       estimator: 'trackLength',
-      medium: homogeneous(1),
+      medium: homogeneousMedium(1),
       d: 16,
       sigmaMaj: 1,
       frame: 16,
@@ -449,7 +354,7 @@ const NAMED: NamedCase[] = [
     name: '§4.5 loop cap with maxSteps = 0: unbiased ray marching reports capped and spends no lookups',
     input: {
       estimator: 'unbiasedRayMarching',
-      medium: homogeneous(1),
+      medium: homogeneousMedium(1),
       d: 1,
       sigmaMaj: 1,
       frame: 18,
@@ -584,23 +489,14 @@ const boundedF32 = fc.oneof(
   fc.float({ min: Math.fround(-1e30), max: Math.fround(1e30), noNaN: true }),
 );
 const mediumArbitrary: fc.Arbitrary<Medium1D> = fc.oneof(
-  anyF32.map(homogeneous),
+  anyF32.map(homogeneousMedium),
   fc
     .record({
       sigma0: boundedF32,
       amplitude: anyF32,
       frequency: fc.float({ min: 0, max: 1e6, noNaN: true }),
     })
-    .map(({ sigma0, amplitude, frequency }): Medium1D => ({
-      kind: MEDIUM_SINE,
-      sigma0,
-      amplitude,
-      frequency,
-      phase: 0,
-      cellSize: 0,
-      cellCount: 0,
-      cells: [],
-    })),
+    .map(({ sigma0, amplitude, frequency }) => sineMedium(sigma0, amplitude, frequency)),
   fc
     .record({
       cells: fc.array(anyF32, { minLength: 16, maxLength: 16 }),

@@ -3,10 +3,14 @@
 // The grid's samples are an r32float 3D texture, which neither the table harness nor
 // runCompute (storage buffers only) can bind, so this dispatch creates the textures
 // with createTexture/writeTexture and binds them through an explicit layout shared by
-// all entry points (one per function), whichever bindings each one uses.
+// all entry points (one per function), whichever bindings each one uses. The twin*
+// helpers call the float64 twins on the same grids and rays, for the comparisons.
 import { withErrorScopes } from '../../src/gpu/errors.ts';
 import { linkKernel } from '../../src/gpu/link.ts';
 import {
+  gridMajorantAlongRay,
+  gridOpticalDepthConstant,
+  gridSegmentInBounds,
   makeDensityGrid,
   type DensityGrid,
   type DensityGridData,
@@ -270,3 +274,13 @@ export async function gpuSegmentInBounds(
   );
   return rays.map((_, i) => [floats[2 * i] ?? NaN, floats[2 * i + 1] ?? NaN]);
 }
+
+/** gridMajorantAlongRay of the twin over the majorant grid, for one ray. */
+export const twinMajorantAlongRay = (majorant: DensityGridData, r: Ray): GridMajorantSegment =>
+  gridMajorantAlongRay(majorant.grid, majorant.volume, r.origin, r.direction, r.tMin, r.tMax);
+/** gridOpticalDepthConstant of the twin over the fine grid, for one ray. */
+export const twinOpticalDepthConstant = (fine: DensityGridData, r: Ray): number =>
+  gridOpticalDepthConstant(fine.grid, fine.volume, r.origin, r.direction, r.tMin, r.tMax);
+/** gridSegmentInBounds of the twin for the fine grid's box, for one ray. */
+export const twinSegmentInBounds = (fine: DensityGridData, r: Ray): [number, number] =>
+  gridSegmentInBounds(fine.grid, r.origin, r.direction, r.tMin, r.tMax);
