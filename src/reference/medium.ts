@@ -74,16 +74,17 @@ export function mediumExtinction(medium: Medium1D, s: number): number {
   switch (medium.kind) {
     case MEDIUM_SINE: {
       const a = Math.min(Math.max(medium.amplitude, 0), 1);
-      return Math.max(medium.sigma0 * (1 + a * Math.sin(medium.frequency * s + medium.phase)), 0);
+      const sigma = Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT);
+      return Math.max(sigma * (1 + a * Math.sin(medium.frequency * s + medium.phase)), 0);
     }
     case MEDIUM_GRID: {
-      if (s < 0 || medium.cellSize <= 0) return 0;
-      const index = Math.floor(s / medium.cellSize);
-      if (index >= Math.min(medium.cellCount, GRID1D_MAX_CELLS)) return 0;
+      const count = Math.min(medium.cellCount, GRID1D_MAX_CELLS);
+      if (s < 0 || medium.cellSize <= 0 || s >= count * medium.cellSize) return 0;
+      const index = Math.min(Math.floor(s / medium.cellSize), count - 1);
       return Math.max(medium.cells[index] ?? 0, 0);
     }
     default:
-      return Math.max(medium.sigma0, 0);
+      return Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT);
   }
 }
 
@@ -108,7 +109,10 @@ export function mediumOpticalDepth(medium: Medium1D, s0: number, s1: number): nu
 export function mediumMajorant(medium: Medium1D, s0: number, s1: number): number {
   switch (medium.kind) {
     case MEDIUM_SINE:
-      return Math.max(medium.sigma0, 0) * (1 + Math.min(Math.max(medium.amplitude, 0), 1));
+      return (
+        Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT) *
+        (1 + Math.min(Math.max(medium.amplitude, 0), 1))
+      );
     case MEDIUM_GRID: {
       if (medium.cellSize <= 0) return 0;
       let majorant = 0;
@@ -120,7 +124,7 @@ export function mediumMajorant(medium: Medium1D, s0: number, s1: number): number
       return majorant;
     }
     default:
-      return Math.max(medium.sigma0, 0);
+      return Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT);
   }
 }
 
