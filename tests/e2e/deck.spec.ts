@@ -132,3 +132,30 @@ for (const path of ['/index.html', '/deck.html']) {
     });
   }
 }
+
+test('a deep link restores the picture exactly, not only the numbers', async ({ page }) => {
+  await page.goto(
+    `${CHAPTER}#beer-law-1.sigma-a=1.5&beer-law-1.thickness=3&beer-law-1.profile=smooth&v=1`,
+  );
+  const linked = page.locator('sb-beer-law').first();
+  await waitForRender(linked);
+  const fromLink = await canvasStats(linked.locator('canvas.sb-canvas'));
+  await page.goto('about:blank');
+  await page.goto(CHAPTER);
+  const widget = page.locator('sb-beer-law').first();
+  await waitForRender(widget);
+  const rendered = Number(await widget.getAttribute('data-rendered'));
+  await widget.locator('select[name="profile"]').selectOption('smooth');
+  await widget.locator('input[type="number"][name="thickness"]').fill('3');
+  await widget.locator('input[type="number"][name="thickness"]').dispatchEvent('change');
+  await widget.locator('input[type="number"][name="sigma-a"]').fill('1.5');
+  await widget.locator('input[type="number"][name="sigma-a"]').dispatchEvent('change');
+  await waitForRender(widget, rendered + 1);
+  await expect(widget.locator('input[type="number"][name="sigma-a"]')).toHaveValue('1.5');
+  await expect
+    .poll(
+      async () => (await canvasStats(widget.locator('canvas.sb-canvas'))).png.equals(fromLink.png),
+      { timeout: 10_000 },
+    )
+    .toBe(true);
+});
