@@ -48,6 +48,14 @@ function makeScrollableRegionsFocusable(): void {
 
 setupThemeToggle();
 makeScrollableRegionsFocusable();
+// Widths change once the KaTeX fonts arrive and when the window is resized.
+void document.fonts.ready.then(makeScrollableRegionsFocusable);
+window.addEventListener('load', makeScrollableRegionsFocusable);
+let resizeTimer: ReturnType<typeof setTimeout> | undefined;
+window.addEventListener('resize', () => {
+  clearTimeout(resizeTimer);
+  resizeTimer = setTimeout(makeScrollableRegionsFocusable, 150);
+});
 setupQuizzes();
 setupDeck();
 void loadWidgets();

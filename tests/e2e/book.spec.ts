@@ -3,7 +3,7 @@
 // and pages stay readable without JavaScript.
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test } from '@playwright/test';
-import { bookPages, chapterPages, trackErrors, waitForRender } from './support.ts';
+import { bookPages, chapterPages, trackErrors, waitForRender, WIDGET_SELECTOR } from './support.ts';
 
 const chapters = chapterPages();
 const pages = bookPages();
@@ -43,7 +43,7 @@ for (const [index, chapter] of pages.entries()) {
       if (next) await expect(page.locator('a[rel="next"]')).toHaveAttribute('href', next.path);
       for (const widget of await page.locator('[class="sb-widget"]').all())
         await widget.scrollIntoViewIfNeeded();
-      for (const widget of await page.locator('sb-beer-law').all()) await waitForRender(widget);
+      for (const widget of await page.locator(WIDGET_SELECTOR).all()) await waitForRender(widget);
       expect(errors).toEqual([]);
     });
 
@@ -51,7 +51,9 @@ for (const [index, chapter] of pages.entries()) {
       test(`passes the axe-core accessibility check (${theme} theme)`, async ({ page }) => {
         await page.emulateMedia({ colorScheme: theme });
         await page.goto(chapter.path);
-        for (const widget of await page.locator('sb-beer-law').all()) await waitForRender(widget);
+        for (const widget of await page.locator(WIDGET_SELECTOR).all()) await waitForRender(widget);
+        // Layout is final once the math fonts have loaded.
+        await page.evaluate(() => document.fonts.ready.then(() => undefined));
         const results = await new AxeBuilder({ page })
           .withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa'])
           .analyze();
@@ -120,7 +122,7 @@ test.describe('without JavaScript', () => {
       await page.goto(chapter.path);
       await expect(page.locator('main h1')).toBeVisible();
       if (chapter.hasMath) await expect(page.locator('.katex').first()).toBeAttached();
-      for (const widget of await page.locator('sb-beer-law').all()) {
+      for (const widget of await page.locator(WIDGET_SELECTOR).all()) {
         await expect(widget.locator('.widget-fallback')).toContainText('needs JavaScript');
       }
     }

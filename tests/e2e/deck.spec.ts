@@ -3,7 +3,7 @@
 // garbage in the hash (which must open without errors).
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test } from '@playwright/test';
-import { canvasStats, trackErrors, waitForRender } from './support.ts';
+import { canvasStats, trackErrors, waitForRender, WIDGET_SELECTOR } from './support.ts';
 
 const CHAPTER = '/chapters/02-extinction-and-transmittance.html';
 

@@ -7,13 +7,14 @@ import {
   parseDisplayed,
   trackErrors,
   waitForRender,
+  WIDGET_SELECTOR,
 } from './support.ts';
 
 test('every widget falls back to the CPU with a visible notice', async ({ page }) => {
   for (const chapter of chapterPages()) {
     const errors = trackErrors(page);
     await page.goto(chapter.path);
-    for (const widget of await page.locator('sb-beer-law').all()) {
+    for (const widget of await page.locator(WIDGET_SELECTOR).all()) {
       await waitForRender(widget);
       await expect(widget.locator('.sb-notice--warning')).toContainText('WebGPU is not available');
       const stats = await canvasStats(widget.locator('canvas.sb-canvas'));

@@ -3,6 +3,12 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { expect, type Locator, type Page } from '@playwright/test';
 import { PNG } from 'pngjs';
+import { WIDGET_CATALOG } from '../../src/widgets/catalog.ts';
+
+/** A CSS selector matching every widget element in the catalog. */
+export const WIDGET_SELECTOR = Object.keys(WIDGET_CATALOG)
+  .map((name) => `sb-${name}`)
+  .join(', ');
 
 const CHAPTERS = fileURLToPath(new URL('../../chapters', import.meta.url));
 
