@@ -119,7 +119,7 @@ for (const path of ['/index.html', '/deck.html']) {
     test(`${path} passes the axe-core accessibility check (${theme} theme)`, async ({ page }) => {
       await page.emulateMedia({ colorScheme: theme });
       await page.goto(path);
-      for (const widget of await page.locator('sb-beer-law:visible').all())
+      for (const widget of await page.locator(WIDGET_SELECTOR).filter({ visible: true }).all())
         await waitForRender(widget);
       const results = await new AxeBuilder({ page })
         .withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa'])
