@@ -2,7 +2,7 @@
 // linked against the shared library, samples T(s) in a compute pass (timed with
 // timestamp queries where available) and draws the beam in a render pass.
 import { runCompute } from '../../gpu/compute.ts';
-import { withErrorScopes } from '../../gpu/errors.ts';
+import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
@@ -47,44 +47,27 @@ export function packParams(
 }
 
 export class BeerLawGpu {
-  private context: GPUCanvasContext | null = null;
-  private pipeline: GPURenderPipeline | null = null;
-  private uniform: GPUBuffer | null = null;
-  private bindGroup: GPUBindGroup | null = null;
-  private readonly format: GPUTextureFormat;
+  private picture: Promise<FullScreenPass> | null = null;
 
   constructor(
     private readonly gpu: GpuContext,
     private readonly canvas: HTMLCanvasElement,
-  ) {
-    this.format = navigator.gpu.getPreferredCanvasFormat();
-  }
+  ) {}
 
-  private async ensurePipeline(): Promise<void> {
-    if (this.pipeline) return;
-    const { device } = this.gpu;
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
-    const context = this.canvas.getContext('webgpu');
-    if (!context) throw new Error('the canvas has no WebGPU context');
-    context.configure({ device, format: this.format, alphaMode: 'opaque' });
-    await withErrorScopes(device, 'beer-law render pipeline', () => {
-      const module = device.createShaderModule({ code });
-      this.pipeline = device.createRenderPipeline({
-        layout: 'auto',
-        vertex: { module, entryPoint: 'fullScreenVertex' },
-        fragment: { module, entryPoint: 'beamFragment', targets: [{ format: this.format }] },
-        primitive: { topology: 'triangle-list' },
-      });
-      this.uniform = device.createBuffer({
-        size: PARAMS_BYTES,
-        usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
-      });
-      this.bindGroup = device.createBindGroup({
-        layout: this.pipeline.getBindGroupLayout(0),
-        entries: [{ binding: 1, resource: { buffer: this.uniform } }],
-      });
+  private pass(): Promise<FullScreenPass> {
+    this.picture ??= linkLibraryKernel(SHADER_LIBRARY, KERNEL).then((code) =>
+      FullScreenPass.create(this.gpu, this.canvas, {
+        label: 'beer-law',
+        code,
+        vertexEntry: 'fullScreenVertex',
+        fragmentEntry: 'beamFragment',
+        uniformBytes: PARAMS_BYTES,
+      }),
+    );
+    this.picture.catch(() => {
+      this.picture = null;
     });
-    this.context = context;
+    return this.picture;
   }
 
   async computeCurve(inputs: BeerLawInputs): Promise<BeerLawResult> {
@@ -112,33 +95,11 @@ export class BeerLawGpu {
   }
 
   async draw(inputs: BeerLawInputs): Promise<void> {
-    await this.ensurePipeline();
-    const { device } = this.gpu;
-    if (!this.context || !this.pipeline || !this.uniform || !this.bindGroup) return;
-    const params = packParams(inputs, this.canvas.width, this.canvas.height);
-    await withErrorScopes(device, 'beer-law draw', () => {
-      device.queue.writeBuffer(this.uniform as GPUBuffer, 0, params);
-      const encoder = device.createCommandEncoder();
-      const pass = encoder.beginRenderPass({
-        colorAttachments: [
-          {
-            view: (this.context as GPUCanvasContext).getCurrentTexture().createView(),
-            loadOp: 'clear',
-            storeOp: 'store',
-            clearValue: { r: 0, g: 0, b: 0, a: 1 },
-          },
-        ],
-      });
-      pass.setPipeline(this.pipeline as GPURenderPipeline);
-      pass.setBindGroup(0, this.bindGroup);
-      pass.draw(3);
-      pass.end();
-      device.queue.submit([encoder.finish()]);
-    });
+    const pass = await this.pass();
+    await pass.draw(packParams(inputs, this.canvas.width, this.canvas.height));
   }
 
   destroy(): void {
-    this.uniform?.destroy();
-    this.context?.unconfigure();
+    void this.picture?.then((pass) => pass.destroy());
   }
 }

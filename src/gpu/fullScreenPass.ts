@@ -1,0 +1,107 @@
+// A full-screen render pass onto a canvas: one triangle, one uniform buffer,
+// one fragment shader that computes every pixel. The widgets' pictures are all
+// of this shape, so the canvas configuration, the pipeline and the error
+// scopes live here once.
+import type { GpuContext } from './device.ts';
+import { withErrorScopes } from './errors.ts';
+
+export interface FullScreenPassOptions {
+  /** Names the pass in error messages, e.g. "beer-law". */
+  label: string;
+  /** Linked WGSL holding both entry points. */
+  code: string;
+  vertexEntry: string;
+  fragmentEntry: string;
+  /** Size of the uniform struct in bytes; bound at `uniformBinding` of group 0. */
+  uniformBytes: number;
+  uniformBinding?: number;
+}
+
+export class FullScreenPass {
+  private readonly context: GPUCanvasContext;
+  private readonly pipeline: GPURenderPipeline;
+  private readonly uniform: GPUBuffer;
+  private readonly bindGroup: GPUBindGroup;
+
+  private constructor(
+    private readonly gpu: GpuContext,
+    private readonly label: string,
+    parts: {
+      context: GPUCanvasContext;
+      pipeline: GPURenderPipeline;
+      uniform: GPUBuffer;
+      bindGroup: GPUBindGroup;
+    },
+  ) {
+    this.context = parts.context;
+    this.pipeline = parts.pipeline;
+    this.uniform = parts.uniform;
+    this.bindGroup = parts.bindGroup;
+  }
+
+  static async create(
+    gpu: GpuContext,
+    canvas: HTMLCanvasElement,
+    options: FullScreenPassOptions,
+  ): Promise<FullScreenPass> {
+    const { device } = gpu;
+    const context = canvas.getContext('webgpu');
+    if (!context) throw new Error('the canvas has no WebGPU context');
+    const format = navigator.gpu.getPreferredCanvasFormat();
+    context.configure({ device, format, alphaMode: 'opaque' });
+    const parts = await withErrorScopes(device, `${options.label} render pipeline`, () => {
+      const module = device.createShaderModule({ code: options.code });
+      const pipeline = device.createRenderPipeline({
+        layout: 'auto',
+        vertex: { module, entryPoint: options.vertexEntry },
+        fragment: { module, entryPoint: options.fragmentEntry, targets: [{ format }] },
+        primitive: { topology: 'triangle-list' },
+      });
+      const uniform = device.createBuffer({
+        size: Math.ceil(options.uniformBytes / 16) * 16,
+        usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
+      });
+      const bindGroup = device.createBindGroup({
+        layout: pipeline.getBindGroupLayout(0),
+        entries: [{ binding: options.uniformBinding ?? 1, resource: { buffer: uniform } }],
+      });
+      return { context, pipeline, uniform, bindGroup };
+    });
+    return new FullScreenPass(gpu, options.label, parts);
+  }
+
+  /** Uploads the uniforms and draws the full-screen triangle into the canvas. */
+  async draw(uniforms: ArrayBufferView<ArrayBuffer>): Promise<void> {
+    const { device } = this.gpu;
+    await withErrorScopes(device, `${this.label} draw`, () => {
+      device.queue.writeBuffer(
+        this.uniform,
+        0,
+        uniforms.buffer,
+        uniforms.byteOffset,
+        uniforms.byteLength,
+      );
+      const encoder = device.createCommandEncoder();
+      const pass = encoder.beginRenderPass({
+        colorAttachments: [
+          {
+            view: this.context.getCurrentTexture().createView(),
+            loadOp: 'clear',
+            storeOp: 'store',
+            clearValue: { r: 0, g: 0, b: 0, a: 1 },
+          },
+        ],
+      });
+      pass.setPipeline(this.pipeline);
+      pass.setBindGroup(0, this.bindGroup);
+      pass.draw(3);
+      pass.end();
+      device.queue.submit([encoder.finish()]);
+    });
+  }
+
+  destroy(): void {
+    this.uniform.destroy();
+    this.context.unconfigure();
+  }
+}
