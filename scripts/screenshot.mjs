@@ -24,15 +24,27 @@ page.on('console', (message) => console.log(`[console.${message.type()}] ${messa
 page.on('pageerror', (error) => console.log(`[pageerror] ${error.message}`));
 await page.goto(url);
 await page.waitForLoadState('networkidle');
-for (const widget of await page.locator('[data-rendered], sb-beer-law').all()) {
-  await widget.scrollIntoViewIfNeeded();
-  await page
-    .waitForFunction(
-      (el) => Number(el.dataset.rendered ?? 0) > 0 || el.querySelector('.sb-notice--error'),
-      await widget.elementHandle(),
-      { timeout: 20000 },
-    )
-    .catch(() => console.log('widget did not render'));
+// Every widget is a custom element named sb-*: wait until each visible one has drawn.
+const widgetSelector = await page.evaluate(() =>
+  [
+    ...new Set(
+      [...document.querySelectorAll('*')]
+        .map((el) => el.localName)
+        .filter((n) => n.startsWith('sb-')),
+    ),
+  ].join(', '),
+);
+if (widgetSelector) {
+  for (const widget of await page.locator(widgetSelector).filter({ visible: true }).all()) {
+    await widget.scrollIntoViewIfNeeded();
+    await page
+      .waitForFunction(
+        (el) => Number(el.dataset.rendered ?? 0) > 0 || el.querySelector('.sb-notice--error'),
+        await widget.elementHandle(),
+        { timeout: 20000 },
+      )
+      .catch(() => console.log('widget did not render'));
+  }
 }
 if (flags.has('--top')) await page.evaluate(() => window.scrollTo(0, 0));
 const selector = [...flags].find((f) => f.startsWith('--selector='))?.slice('--selector='.length);

@@ -15,7 +15,12 @@ function writeSlide(slide: number): void {
   const hash = location.hash.replace(/^#/, '');
   const params = new URLSearchParams(hash.includes('=') ? hash : '');
   params.set('slide', String(slide));
-  history.replaceState(history.state, '', `${location.pathname}#${params.toString()}`);
+  // Keep the query (e.g. ?backend=cpu) so that a slide link reopens the same way.
+  history.replaceState(
+    history.state,
+    '',
+    `${location.pathname}${location.search}#${params.toString()}`,
+  );
 }
 
 export function setupDeck(): void {

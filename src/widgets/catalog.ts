@@ -3,7 +3,9 @@
 // to its module. One entry per folder in src/widgets/.
 import type { WidgetEntry } from './parameters.ts';
 import { BEER_LAW } from './beer-law/schema.ts';
+import { HG_LOBE } from './hg-lobe/schema.ts';
 
 export const WIDGET_CATALOG: Readonly<Record<string, WidgetEntry>> = {
   [BEER_LAW.name]: BEER_LAW,
+  [HG_LOBE.name]: HG_LOBE,
 };

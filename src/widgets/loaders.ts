@@ -5,4 +5,8 @@ export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () 
     const module = await import('./beer-law/element.ts');
     return { define: module.defineBeerLaw };
   },
+  'hg-lobe': async () => {
+    const module = await import('./hg-lobe/element.ts');
+    return { define: module.defineHgLobe };
+  },
 };

@@ -21,7 +21,7 @@ test('the deck walks slide by slide with the keyboard, each slide a deep link', 
     await expect(page.locator('.deck-slide:visible')).toHaveCount(1);
     await expect(page.locator('.deck-current')).toHaveText(String(i));
     expect(page.url()).toContain(`slide=${i}`);
-    const widget = slide.locator('sb-beer-law');
+    const widget = slide.locator(WIDGET_SELECTOR);
     await waitForRender(widget);
     const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
     expect(stats.luminanceDeviation).toBeGreaterThan(10);

@@ -65,6 +65,30 @@ export const DECK: readonly DeckSlide[] = [
       'At τ = 100 the f32 exponential is subnormal and then exactly 0 — never negative, never NaN.',
     chapter: '02-extinction-and-transmittance',
   },
+  {
+    title: 'Back scattering: g = −0.3',
+    widget: 'hg-lobe',
+    attributes: { g: '-0.3', compare: 'isotropic', scale: 'linear', samples: '16', seed: '1' },
+    caption:
+      'A Henyey–Greenstein lobe with g < 0 sends more light back toward the source; the mean cosine of the samples is g.',
+    chapter: '03-phase-functions-and-in-scattering',
+  },
+  {
+    title: 'Isotropic scattering: g = 0',
+    widget: 'hg-lobe',
+    attributes: { g: '0', compare: 'rayleigh', scale: 'linear', samples: '16', seed: '1' },
+    caption:
+      'At g = 0 HG is the isotropic 1/(4π); Rayleigh scattering (outline) is close to it but prefers forward and back.',
+    chapter: '03-phase-functions-and-in-scattering',
+  },
+  {
+    title: 'Forward scattering: g = 0.6',
+    widget: 'hg-lobe',
+    attributes: { g: '0.6', compare: 'isotropic', scale: 'log', samples: '16', seed: '1' },
+    caption:
+      'Most media scatter forward. On a log radius the backward tail shows; the χ² test checks the sampler against the closed-form CDF.',
+    chapter: '03-phase-functions-and-in-scattering',
+  },
 ];
 
 /** Checks every slide against the widget catalog; a bad slide fails the build. */

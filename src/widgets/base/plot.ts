@@ -15,6 +15,8 @@ export interface LinePlotOptions {
   yLabel: string;
   yRange?: [number, number];
   height?: number;
+  /** Logarithmic y axis (base 10); values ≤ 0 have no logarithm and are left as gaps. */
+  yLog?: boolean;
 }
 
 export class LinePlot {
@@ -65,7 +67,9 @@ export class LinePlot {
   /** Draws x against the series; rebuilds the chart only when the series change. */
   update(x: ArrayLike<number>, series: readonly PlotSeries[]): void {
     this.lastData = { x, series };
-    const data = [Array.from(x), ...series.map((s) => Array.from(s.values))] as uPlot.AlignedData;
+    const column = (values: ArrayLike<number>): (number | null)[] =>
+      this.options.yLog ? Array.from(values, (v) => (v > 0 ? v : null)) : Array.from(values);
+    const data = [Array.from(x), ...series.map((s) => column(s.values))] as uPlot.AlignedData;
     const fontSize = this.fontSize();
     const signature = `${fontSize};${series.map((s) => `${s.label}|${s.color}`).join(';')}`;
     if (this.plot && signature === this.signature) {
@@ -95,7 +99,10 @@ export class LinePlot {
         height: this.height(),
         scales: {
           x: { time: false },
-          y: this.options.yRange ? { range: this.options.yRange } : {},
+          y: {
+            ...(this.options.yRange ? { range: this.options.yRange } : {}),
+            ...(this.options.yLog ? { distr: 3, log: 10 } : {}),
+          },
         },
         axes: [axis(this.options.xLabel), axis(this.options.yLabel)],
         series: [

@@ -1,0 +1,377 @@
+// <sb-hg-lobe>: the Henyey–Greenstein phase function (chapter 3). Draws the lobe
+// as a polar plot on the GPU, samples 2^n scattering cosines with the library's
+// HG sampler in a compute pass, and shows the histogram against the closed form
+// with a chi-square test, the sample mean cosine against g, the normalisation of
+// the float64 twin, and the cost of sampling on the GPU next to the CPU twin.
+import { acquireGpu, onDeviceLost, type GpuContext } from '../../gpu/device.ts';
+import { hgEval } from '../../reference/phase.ts';
+import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import { LinePlot, type PlotSeries } from '../base/plot.ts';
+import { WidgetElement, type Preset } from '../base/widgetElement.ts';
+import { HG_LOBE } from './schema.ts';
+import { drawLobeCpu, sampleHistogramCpu } from './cpuBackend.ts';
+import { HgLobeGpu } from './gpuBackend.ts';
+import {
+  ALPHA,
+  BIN_COUNT,
+  CPU_TIMING_CAP,
+  binEdge,
+  chiSquareTest,
+  comparePhase,
+  hgBinProbabilities,
+  inputsFrom,
+  meanCosine,
+  polarLayout,
+  sphereIntegral,
+  type HgHistogram,
+  type HgLobeInputs,
+  type PolarLayout,
+  type RadiusScale,
+} from './model.ts';
+
+type Backend =
+  { kind: 'gpu'; gpu: GpuContext; renderer: HgLobeGpu } | { kind: 'cpu'; reason: string };
+
+const READOUT_ROWS = [
+  ['normalisation', '∫ p dω (float64 quadrature)'],
+  ['forward', 'p(θ = 0°), forward'],
+  ['backward', 'p(θ = 180°), backward'],
+  ['mean-cosine', 'Sample mean cosine ± SE'],
+  ['chi-square', 'χ² of 64 bins vs closed form'],
+  ['replay', 'Histogram vs float64 replay'],
+] as const;
+
+const COMPARE_NAMES = { none: '', isotropic: 'isotropic', rayleigh: 'Rayleigh' } as const;
+
+export class HgLobeElement extends WidgetElement {
+  protected readonly entry = HG_LOBE;
+  protected override presets: readonly Preset[] = [
+    { label: 'g = −0.3 (back)', values: { g: -0.3 } },
+    { label: 'g = 0 (isotropic)', values: { g: 0 } },
+    { label: 'g = 0.6 (forward)', values: { g: 0.6 } },
+    { label: 'g = 0.9 (clouds)', values: { g: 0.9 } },
+    { label: 'Rayleigh vs isotropic', values: { g: 0, compare: 'rayleigh' } },
+  ];
+
+  private canvas: HTMLCanvasElement | null = null;
+  private labels: HTMLElement | null = null;
+  private plotArea: HTMLElement | null = null;
+  private plot: LinePlot | null = null;
+  private plotScale: RadiusScale | null = null;
+  private readouts = new Map<string, HTMLElement>();
+  private cost: HTMLElement | null = null;
+  private backend: Promise<Backend> | null = null;
+
+  protected buildStage(stage: HTMLElement): void {
+    const figure = document.createElement('div');
+    figure.className = 'sb-hg-figure';
+    this.canvas = this.createCanvas();
+    this.labels = document.createElement('div');
+    this.labels.className = 'sb-hg-labels';
+    this.labels.setAttribute('aria-hidden', 'true');
+    figure.append(this.canvas, this.labels);
+    stage.appendChild(figure);
+    this.plotArea = document.createElement('div');
+    this.plotArea.className = 'sb-plot';
+    this.plotArea.setAttribute('role', 'img');
+    this.plotArea.setAttribute(
+      'aria-label',
+      'Histogram of the sampled scattering cosines against the analytic density 2π·p(μ)',
+    );
+    stage.appendChild(this.plotArea);
+  }
+
+  private createCanvas(): HTMLCanvasElement {
+    const canvas = document.createElement('canvas');
+    canvas.className = 'sb-canvas';
+    canvas.setAttribute('role', 'img');
+    canvas.width = 960;
+    canvas.height = 480;
+    return canvas;
+  }
+
+  protected buildReadout(readout: HTMLElement): void {
+    const list = document.createElement('dl');
+    list.className = 'sb-readout';
+    for (const [key, label] of READOUT_ROWS) {
+      const row = document.createElement('div');
+      const term = document.createElement('dt');
+      term.textContent = label;
+      const value = document.createElement('dd');
+      value.dataset['readout'] = key;
+      row.append(term, value);
+      list.appendChild(row);
+      this.readouts.set(key, value);
+    }
+    this.cost = document.createElement('p');
+    this.cost.className = 'sb-cost';
+    this.cost.setAttribute('aria-live', 'polite');
+    readout.append(list, this.cost);
+  }
+
+  private chooseBackend(): Promise<Backend> {
+    this.backend ??= (async (): Promise<Backend> => {
+      if (new URLSearchParams(location.search).get('backend') === 'cpu') {
+        return { kind: 'cpu', reason: 'the page was opened with ?backend=cpu' };
+      }
+      try {
+        const gpu = await acquireGpu();
+        if (!this.canvas) throw new Error('no canvas');
+        onDeviceLost((reason) => this.fallBackToCpu(reason));
+        return { kind: 'gpu', gpu, renderer: new HgLobeGpu(gpu, this.canvas) };
+      } catch (error) {
+        return { kind: 'cpu', reason: error instanceof Error ? error.message : String(error) };
+      }
+    })();
+    return this.backend;
+  }
+
+  /** After a device loss: a fresh canvas (a WebGPU canvas cannot become 2D) and the CPU path. */
+  private fallBackToCpu(reason: string): void {
+    if (this.canvas) {
+      const fresh = this.createCanvas();
+      this.canvas.replaceWith(fresh);
+      this.canvas = fresh;
+    }
+    this.backend = Promise.resolve({ kind: 'cpu', reason });
+    this.scheduleRender();
+  }
+
+  protected async render(): Promise<void> {
+    const inputs = inputsFrom(this.values);
+    const backend = await this.chooseBackend();
+    if (!this.canvas) return;
+    const layout = polarLayout(inputs, this.canvas.width, this.canvas.height);
+    let histogram: HgHistogram;
+    let replay: HgHistogram;
+    if (backend.kind === 'gpu') {
+      try {
+        histogram = await backend.renderer.sample(inputs, layout);
+        await backend.renderer.draw(inputs, layout);
+      } catch (error) {
+        this.fallBackToCpu(
+          `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
+        );
+        return;
+      }
+      this.clearNotice('backend');
+      // The twin replays the same streams, capped so that dragging a slider stays smooth.
+      replay = sampleHistogramCpu(
+        inputs.g,
+        Math.min(inputs.sampleCount, CPU_TIMING_CAP),
+        inputs.seed,
+      );
+    } else {
+      drawLobeCpu(this.canvas, inputs);
+      histogram = sampleHistogramCpu(inputs.g, inputs.sampleCount, inputs.seed);
+      replay = histogram;
+      this.showNotice(
+        'backend',
+        'warning',
+        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same samples (the same PCG streams), the picture drawn at half resolution.`,
+      );
+    }
+    this.drawLabels(inputs, layout);
+    this.showResult(inputs, histogram, replay, backend);
+    this.updatePlot(inputs, histogram, backend);
+  }
+
+  /** Ring values and directions over the canvas, in per cent of its size so they follow its CSS size. */
+  private drawLabels(inputs: HgLobeInputs, layout: PolarLayout): void {
+    if (!this.labels) return;
+    const label = (text: string, x: number, y: number, className: string): HTMLElement => {
+      const span = document.createElement('span');
+      span.className = className;
+      span.textContent = text;
+      span.style.left = `${(100 * x) / layout.width}%`;
+      span.style.top = `${(100 * y) / layout.height}%`;
+      return span;
+    };
+    const spans: HTMLElement[] = [
+      label('incident beam →', 12, layout.centreY - 12, 'sb-hg-label sb-hg-label--start'),
+      label(
+        'θ = 0° (forward)',
+        layout.width - 12,
+        layout.centreY - 12,
+        'sb-hg-label sb-hg-label--end',
+      ),
+      label('θ = 90°', layout.centreX - 6, 28, 'sb-hg-label sb-hg-label--end'),
+    ];
+    // Ring values below the beam axis on the backward side, where the beam is the only other mark.
+    // Every ring when they are at least 56 px apart, otherwise every second one.
+    const spacing = layout.rings[0]?.radius ?? 0;
+    const every = spacing >= 56 ? 1 : 2;
+    layout.rings.forEach((ring, index) => {
+      const x = layout.centreX - ring.radius;
+      if (x < 24 || (index + 1) % every !== 0) return;
+      const text =
+        inputs.scale === 'log'
+          ? `10${superscript(Math.round(Math.log10(ring.value)))}`
+          : formatNumber(ring.value, 3);
+      spans.push(label(text, x, layout.centreY + 6, 'sb-hg-label sb-hg-label--ring'));
+    });
+    const other = COMPARE_NAMES[inputs.compare];
+    spans.push(
+      label(
+        `filled: Henyey–Greenstein${other ? ` · outline: ${other}` : ''}`,
+        12,
+        layout.height - 14,
+        'sb-hg-label sb-hg-label--note',
+      ),
+    );
+    spans.push(
+      label(
+        inputs.scale === 'log' ? 'radius ∝ log₁₀ p, rings in sr⁻¹' : 'radius ∝ p, rings in sr⁻¹',
+        layout.width - 12,
+        layout.height - 14,
+        'sb-hg-label sb-hg-label--end sb-hg-label--note',
+      ),
+    );
+    this.labels.replaceChildren(...spans);
+  }
+
+  private showResult(
+    inputs: HgLobeInputs,
+    histogram: HgHistogram,
+    replay: HgHistogram,
+    backend: Backend,
+  ): void {
+    const set = (key: string, text: string, state?: 'ok' | 'bad'): void => {
+      const element = this.readouts.get(key);
+      if (!element) return;
+      element.textContent = text;
+      element.classList.toggle('sb-ok', state === 'ok');
+      element.classList.toggle('sb-bad', state === 'bad');
+    };
+    const g = inputs.g;
+    const integral = sphereIntegral((mu) => hgEval(g, mu));
+    set('normalisation', integral.toFixed(10), Math.abs(integral - 1) < 1e-9 ? 'ok' : 'bad');
+    set('forward', `${formatNumber(hgEval(g, 1))} sr⁻¹`);
+    set('backward', `${formatNumber(hgEval(g, -1))} sr⁻¹`);
+
+    const mean = meanCosine(histogram, g);
+    const within = Math.abs(mean.zScore) < 5;
+    set(
+      'mean-cosine',
+      `${formatNumber(mean.mean, 5)} ± ${formatNumber(mean.standardError, 2)} (g = ${formatNumber(g, 4)}, ${formatNumber(Math.abs(mean.zScore), 2)} SE)`,
+      within ? 'ok' : 'bad',
+    );
+    const chi = chiSquareTest(histogram.bins, hgBinProbabilities(g), histogram.sampleCount);
+    const pooled = chi.pooled > 0 ? `, ${chi.pooled} sparse bins pooled` : '';
+    set(
+      'chi-square',
+      `${formatNumber(chi.statistic, 4)} (df ${chi.df}${pooled}): ${chi.passes ? 'passes' : 'fails'} at α = ${ALPHA} (critical ${formatNumber(chi.critical, 4)})`,
+      chi.passes ? 'ok' : 'bad',
+    );
+    if (backend.kind === 'gpu') {
+      if (replay.sampleCount === histogram.sampleCount) {
+        let moved = 0;
+        for (let k = 0; k < BIN_COUNT; k++)
+          moved += Math.abs((histogram.bins[k] ?? 0) - (replay.bins[k] ?? 0));
+        moved /= 2;
+        set(
+          'replay',
+          moved === 0
+            ? 'identical bins (GPU f32 vs CPU f64)'
+            : `${moved} of ${histogram.sampleCount} samples in a neighbouring bin (f32 rounding at bin edges)`,
+          moved <= 1e-3 * histogram.sampleCount ? 'ok' : 'bad',
+        );
+      } else {
+        set('replay', `replayed on the CPU for the first 2¹⁶ samples only (timing)`);
+      }
+    } else {
+      set('replay', 'this is the float64 replay (CPU fallback)');
+    }
+
+    const n = histogram.sampleCount;
+    const nText = `2${superscript(inputs.samplesExponent)} = ${n} samples`;
+    const how =
+      histogram.timing === 'gpu-timestamp'
+        ? 'GPU timestamp query'
+        : histogram.timing === 'gpu-wall'
+          ? 'wall time; this GPU has no timestamp queries'
+          : 'CPU wall time';
+    let twin: string;
+    if (replay.sampleCount === n) {
+      twin = `float64 twin on the CPU: ${formatMilliseconds(replay.milliseconds)} for the same ${n}`;
+    } else {
+      const factor = n / replay.sampleCount;
+      twin =
+        `float64 twin on the CPU: ≈ ${formatMilliseconds(replay.milliseconds * factor)} for ${n}, ` +
+        `scaled ×${factor} from ${formatMilliseconds(replay.milliseconds)} measured on ${replay.sampleCount}`;
+    }
+    if (this.cost) {
+      this.cost.textContent =
+        backend.kind === 'gpu'
+          ? `WebGPU (${backend.gpu.adapterDescription}): ${nText} in ${formatMilliseconds(histogram.milliseconds)} (${how}); ${twin}.`
+          : `CPU fallback: ${nText} in ${formatMilliseconds(histogram.milliseconds)} (${how}, float64 twin).`;
+    }
+    if (this.canvas) {
+      const other = COMPARE_NAMES[inputs.compare];
+      this.canvas.setAttribute(
+        'aria-label',
+        `Polar plot of the Henyey–Greenstein phase function with g = ${formatNumber(g, 3)}: ` +
+          `the beam enters from the left; the lobe reaches ${formatNumber(hgEval(g, 1), 3)} per steradian forward ` +
+          `and ${formatNumber(hgEval(g, -1), 3)} backward${other ? `, outlined against the ${other} phase function` : ''}.`,
+      );
+    }
+  }
+
+  private updatePlot(inputs: HgLobeInputs, histogram: HgHistogram, backend: Backend): void {
+    if (!this.plotArea) return;
+    if (!this.plot || this.plotScale !== inputs.scale) {
+      this.plot?.destroy();
+      this.plotArea.replaceChildren();
+      this.plot = new LinePlot(this.plotArea, {
+        xLabel: 'μ = cos θ',
+        yLabel: 'density of μ, 2π·p(μ)',
+        height: 260,
+        yLog: inputs.scale === 'log',
+      });
+      this.plotScale = inputs.scale;
+    }
+    // A staircase: each bin's density at both of its ends (nudged inward so x stays increasing).
+    const width = 2 / BIN_COUNT;
+    const x: number[] = [];
+    const sampled: number[] = [];
+    for (let k = 0; k < BIN_COUNT; k++) {
+      const density = (histogram.bins[k] ?? 0) / (histogram.sampleCount * width);
+      x.push(binEdge(k) + 1e-9, binEdge(k + 1) - 1e-9);
+      sampled.push(density, density);
+    }
+    const series: PlotSeries[] = [
+      {
+        label: backend.kind === 'gpu' ? 'sampled on the GPU' : 'sampled by the CPU twin',
+        color: '#d9822b',
+        values: sampled,
+      },
+      {
+        label: 'analytic 2π·p_HG(μ)',
+        color: '#8a63d2',
+        values: x.map((mu) => 2 * Math.PI * hgEval(inputs.g, mu)),
+      },
+    ];
+    const other = comparePhase(inputs.compare);
+    if (other) {
+      series.push({
+        label: `${COMPARE_NAMES[inputs.compare]} 2π·p(μ)`,
+        color: '#5b8def',
+        dash: [6, 4],
+        values: x.map((mu) => 2 * Math.PI * other(mu)),
+      });
+    }
+    this.plot.update(x, series);
+  }
+}
+
+const SUPERSCRIPT_DIGITS = '⁰¹²³⁴⁵⁶⁷⁸⁹';
+
+function superscript(value: number): string {
+  return [...String(value)]
+    .map((c) => (c === '-' ? '⁻' : (SUPERSCRIPT_DIGITS[Number(c)] ?? c)))
+    .join('');
+}
+
+export function defineHgLobe(): void {
+  if (!customElements.get('sb-hg-lobe')) customElements.define('sb-hg-lobe', HgLobeElement);
+}
