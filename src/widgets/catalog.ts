@@ -4,8 +4,10 @@
 import type { WidgetEntry } from './parameters.ts';
 import { BEER_LAW } from './beer-law/schema.ts';
 import { HG_LOBE } from './hg-lobe/schema.ts';
+import { RAYLEIGH_SKY } from './rayleigh-sky/schema.ts';
 
 export const WIDGET_CATALOG: Readonly<Record<string, WidgetEntry>> = {
   [BEER_LAW.name]: BEER_LAW,
   [HG_LOBE.name]: HG_LOBE,
+  [RAYLEIGH_SKY.name]: RAYLEIGH_SKY,
 };

@@ -9,4 +9,8 @@ export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () 
     const module = await import('./hg-lobe/element.ts');
     return { define: module.defineHgLobe };
   },
+  'rayleigh-sky': async () => {
+    const module = await import('./rayleigh-sky/element.ts');
+    return { define: module.defineRayleighSky };
+  },
 };

@@ -89,6 +89,22 @@ export const DECK: readonly DeckSlide[] = [
       'Most media scatter forward. On a log radius the backward tail shows; the χ² test checks the sampler against the closed-form CDF.',
     chapter: '03-phase-functions-and-in-scattering',
   },
+  {
+    title: 'Why the sky is blue',
+    widget: 'rayleigh-sky',
+    attributes: { 'sun-elevation': '60', scattering: 'on', steps: '32', exposure: '0' },
+    caption:
+      'Skylight is sunlight scattered once by air molecules, and σs ∝ λ⁻⁴: at noon the zenith has 4.5 times more blue than red.',
+    chapter: '03-phase-functions-and-in-scattering',
+  },
+  {
+    title: 'Why sunsets are red',
+    widget: 'rayleigh-sky',
+    attributes: { 'sun-elevation': '2', scattering: 'on', steps: '32', exposure: '1' },
+    caption:
+      'At 2° the sunlight crosses about 19 times the air of the vertical path, and Beer’s law removes the blue first: T_sun ≈ (0.42, 0.13, 0.007).',
+    chapter: '03-phase-functions-and-in-scattering',
+  },
 ];
 
 /** Checks every slide against the widget catalog; a bad slide fails the build. */

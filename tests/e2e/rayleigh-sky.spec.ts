@@ -1,0 +1,177 @@
+// <sb-rayleigh-sky> in Chromium with WebGPU (SwiftShader): it draws a non-blank sky,
+// its readouts show the physics of chapter 3 (a blue zenith at noon, a red sun at
+// sunset, a black sky without air), the step count trades accuracy against cost,
+// its state round-trips through the URL, presentation mode and the presets work from
+// the keyboard, and without WebGPU it falls back to the float64 twin and says so.
+import AxeBuilder from '@axe-core/playwright';
+import { expect, test, type Locator, type Page } from '@playwright/test';
+import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+
+const CHAPTER = '/chapters/03-phase-functions-and-in-scattering.html';
+const ID = 'rayleigh-sky-1';
+
+/** Opens the chapter with `state` (parameter → value) in the hash for the first sky widget. */
+async function openSky(
+  page: Page,
+  state: Record<string, string> = {},
+  query = '',
+): Promise<Locator> {
+  const hash = Object.entries(state)
+    .map(([k, v]) => `${ID}.${k}=${v}`)
+    .join('&');
+  await page.goto(`${CHAPTER}${query}${hash ? `#${hash}` : ''}`);
+  const widget = page.locator('sb-rayleigh-sky').first();
+  await waitForRender(widget);
+  return widget;
+}
+
+async function readout(widget: Locator, key: string): Promise<string> {
+  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
+}
+
+function controlValue(widget: Locator, name: string): Locator {
+  return widget.locator(`input[type="number"][name="${name}"], select[name="${name}"]`);
+}
+
+/** The largest relative error over the probes, the first number of the error readout (%). */
+async function largestError(widget: Locator): Promise<number> {
+  return parseDisplayed(await readout(widget, 'error'));
+}
+
+test('draws a non-blank sky on the GPU, with the cost, the error and the scope line', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openSky(page);
+  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  expect(stats.luminanceDeviation).toBeGreaterThan(10);
+  expect(stats.distinctColours).toBeGreaterThan(20);
+  await expect(widget.locator('.sb-cost')).toContainText('WebGPU');
+  await expect(widget.locator('.sb-cost')).toContainText('per frame');
+  await expect(widget.locator('.sb-notice--warning')).toHaveCount(0);
+  await expect(widget.locator('.sb-sky-labels')).toContainText('enlarged ×4');
+  await expect(widget).toContainText(
+    'Single Rayleigh scattering only: no ozone, no aerosols, no multiple scattering.',
+  );
+  expect(errors).toEqual([]);
+});
+
+test('noon has a blue zenith, sunset a red sun, and no air a black sky with a white sun', async ({
+  page,
+}) => {
+  const widget = await openSky(page, { 'sun-elevation': '60' });
+  expect(parseDisplayed(await readout(widget, 'zenith-ratio'))).toBeGreaterThan(1);
+  // The float64 twin gives L_B/L_R = 4.51 at the zenith for a sun at 60°.
+  expect(parseDisplayed(await readout(widget, 'zenith-ratio'))).toBeCloseTo(4.5, 1);
+  const rendered = Number(await widget.getAttribute('data-rendered'));
+  await widget.locator('input[type="range"]').first().focus();
+  await page.keyboard.press('3');
+  await waitForRender(widget, rendered + 1);
+  await expect(controlValue(widget, 'sun-elevation')).toHaveValue('2');
+  // Twin: T_sun = (0.421, 0.133, 0.0072) at 2°, red/blue ≈ 58.
+  await expect
+    .poll(async () => parseDisplayed(await readout(widget, 'sun-ratio')))
+    .toBeGreaterThan(10);
+  await page.keyboard.press('4');
+  await expect(controlValue(widget, 'scattering')).toHaveValue('off');
+  await expect.poll(() => readout(widget, 'sun')).toBe('1, 1, 1');
+  await expect.poll(() => readout(widget, 'zenith')).toBe('0, 0, 0');
+});
+
+test('more view-ray samples lower the error against the converged reference, and the picture follows the sun', async ({
+  page,
+}) => {
+  const widget = await openSky(page, { 'sun-elevation': '20', steps: '8' });
+  const coarse = await largestError(widget);
+  const costBefore = (await widget.locator('.sb-cost').textContent()) ?? '';
+  expect(costBefore).toContain('N = 8 view samples');
+  const before = await canvasStats(widget.locator('canvas.sb-canvas'));
+  let rendered = Number(await widget.getAttribute('data-rendered'));
+  const steps = controlValue(widget, 'steps');
+  await steps.fill('64');
+  await steps.press('Enter');
+  await waitForRender(widget, rendered + 1);
+  await expect(widget.locator('.sb-cost')).toContainText('N = 64 view samples × M = 16');
+  // Midpoint rule, O(h²): 8× more samples cut the error by ~64; at least 10× here.
+  await expect.poll(() => largestError(widget)).toBeLessThan(coarse / 10);
+  expect(page.url()).toContain('steps=64');
+  rendered = Number(await widget.getAttribute('data-rendered'));
+  const slider = widget.locator('input[type="range"][name="sun-elevation"]');
+  await slider.focus();
+  for (let i = 0; i < 4; i++) await page.keyboard.press('ArrowRight');
+  await waitForRender(widget, rendered + 1);
+  await expect(controlValue(widget, 'sun-elevation')).toHaveValue('22');
+  const after = await canvasStats(widget.locator('canvas.sb-canvas'));
+  expect(after.png.equals(before.png)).toBe(false);
+});
+
+test('a deep link restores the state exactly', async ({ page }) => {
+  const widget = await openSky(page, {
+    'sun-elevation': '2',
+    scattering: 'on',
+    steps: '100',
+    exposure: '1.5',
+  });
+  await expect(controlValue(widget, 'sun-elevation')).toHaveValue('2');
+  await expect(controlValue(widget, 'scattering')).toHaveValue('on');
+  await expect(controlValue(widget, 'steps')).toHaveValue('100');
+  await expect(controlValue(widget, 'exposure')).toHaveValue('1.5');
+  await expect(widget.locator('.sb-cost')).toContainText('N = 100 view samples × M = 25');
+  expect(parseDisplayed(await readout(widget, 'sun-ratio'))).toBeGreaterThan(1);
+});
+
+test('presentation mode: F enters and fills the screen, number keys recall the presets, Esc leaves', async ({
+  page,
+}) => {
+  const widget = await openSky(page);
+  await widget.locator('input[type="range"]').first().focus();
+  await page.keyboard.press('f');
+  const shell = widget.locator('.sb-widget');
+  await expect(shell).toHaveClass(/is-presenting/);
+  const box = await shell.boundingBox();
+  expect(box?.width).toBeGreaterThan(1200);
+  expect(box?.height).toBeGreaterThan(850);
+  expect(page.url()).toContain('present=1');
+  await expect(widget.locator('canvas.sb-canvas')).toBeInViewport();
+  await page.keyboard.press('2');
+  await expect(widget.locator('.sb-preset-toast')).toHaveText('2 · afternoon');
+  await expect(controlValue(widget, 'sun-elevation')).toHaveValue('20');
+  await page.keyboard.press('1');
+  await expect(controlValue(widget, 'sun-elevation')).toHaveValue('60');
+  await page.keyboard.press('Escape');
+  await expect(shell).not.toHaveClass(/is-presenting/);
+  await widget.getByRole('button', { name: 'Present' }).click();
+  await expect(shell).toHaveClass(/is-presenting/);
+  await widget.getByRole('button', { name: 'Exit presentation' }).click();
+  await expect(shell).not.toHaveClass(/is-presenting/);
+});
+
+test('?backend=cpu: the float64 twin draws the sky and computes the same numbers, and says so', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const state = { 'sun-elevation': '60', steps: '16' };
+  const gpuWidget = await openSky(page, state);
+  await expect(gpuWidget.locator('.sb-cost')).toContainText('WebGPU');
+  const gpuZenith = parseDisplayed(await readout(gpuWidget, 'zenith-ratio'));
+  const widget = await openSky(page, state, '?backend=cpu');
+  await expect(widget.locator('.sb-notice--warning')).toContainText('WebGPU is not available');
+  await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
+  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  expect(stats.luminanceDeviation).toBeGreaterThan(10);
+  // Same N and M: f32 vs float64 differ by < 1e-3 relative (tests/shaders), so the
+  // four displayed digits of the ratio agree to within one unit in the last place.
+  expect(Math.abs(parseDisplayed(await readout(widget, 'zenith-ratio')) - gpuZenith)).toBeLessThan(
+    2e-3,
+  );
+  expect(errors).toEqual([]);
+});
+
+test('passes an axe accessibility check in both themes', async ({ page }) => {
+  for (const colorScheme of ['light', 'dark'] as const) {
+    await page.emulateMedia({ colorScheme });
+    await openSky(page);
+    const results = await new AxeBuilder({ page }).include('sb-rayleigh-sky').analyze();
+    expect(results.violations.map((v) => `${v.id}: ${v.help}`)).toEqual([]);
+  }
+});
