@@ -2,7 +2,7 @@
 // draws the attenuated beam on the GPU, reports T at the exit next to its float64
 // reference and the cost of computing it, and checks the multiplicative property
 // T(0→d) = T(0→s₀)·T(s₀→d) at the split point.
-import { acquireGpu, onDeviceLost, type GpuContext } from '../../gpu/device.ts';
+import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot } from '../base/plot.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
@@ -11,8 +11,7 @@ import { computeCurveCpu, drawBeamCpu } from './cpuBackend.ts';
 import { BeerLawGpu } from './gpuBackend.ts';
 import { inputsFrom, type BeerLawInputs, type BeerLawResult } from './model.ts';
 
-type Backend =
-  { kind: 'gpu'; gpu: GpuContext; renderer: BeerLawGpu } | { kind: 'cpu'; reason: string };
+type Backend = ChosenBackend<BeerLawGpu>;
 
 const READOUT_ROWS = [
   ['tau', 'Optical thickness τ(0→d)'],
@@ -50,7 +49,13 @@ export class BeerLawElement extends WidgetElement {
   private plot: LinePlot | null = null;
   private readouts = new Map<string, HTMLElement>();
   private cost: HTMLElement | null = null;
-  private backend: Promise<Backend> | null = null;
+  private readonly backends = new BackendChooser<BeerLawGpu>(
+    (gpu) => {
+      if (!this.canvas) throw new Error('no canvas');
+      return new BeerLawGpu(gpu, this.canvas);
+    },
+    (reason) => this.fallBackToCpu(reason),
+  );
 
   protected buildStage(stage: HTMLElement): void {
     this.stage = stage;
@@ -97,23 +102,6 @@ export class BeerLawElement extends WidgetElement {
     readout.append(list, this.cost);
   }
 
-  private chooseBackend(): Promise<Backend> {
-    this.backend ??= (async (): Promise<Backend> => {
-      if (new URLSearchParams(location.search).get('backend') === 'cpu') {
-        return { kind: 'cpu', reason: 'the page was opened with ?backend=cpu' };
-      }
-      try {
-        const gpu = await acquireGpu();
-        if (!this.canvas) throw new Error('no canvas');
-        onDeviceLost((reason) => this.fallBackToCpu(reason));
-        return { kind: 'gpu', gpu, renderer: new BeerLawGpu(gpu, this.canvas) };
-      } catch (error) {
-        return { kind: 'cpu', reason: error instanceof Error ? error.message : String(error) };
-      }
-    })();
-    return this.backend;
-  }
-
   /** After a device loss: a fresh canvas (a WebGPU canvas cannot become 2D) and the CPU path. */
   private fallBackToCpu(reason: string): void {
     if (this.canvas && this.stage) {
@@ -121,13 +109,13 @@ export class BeerLawElement extends WidgetElement {
       this.canvas.replaceWith(fresh);
       this.canvas = fresh;
     }
-    this.backend = Promise.resolve({ kind: 'cpu', reason });
+    this.backends.useCpu(reason);
     this.scheduleRender();
   }
 
   protected async render(): Promise<void> {
     const inputs = inputsFrom(this.values);
-    const backend = await this.chooseBackend();
+    const backend = await this.backends.choose();
     const reference = computeCurveCpu(inputs);
     let result: BeerLawResult;
     if (backend.kind === 'gpu') {

@@ -3,7 +3,7 @@
 // HG sampler in a compute pass, and shows the histogram against the closed form
 // with a chi-square test, the sample mean cosine against g, the normalisation of
 // the float64 twin, and the cost of sampling on the GPU next to the CPU twin.
-import { acquireGpu, onDeviceLost, type GpuContext } from '../../gpu/device.ts';
+import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
 import { hgEval } from '../../reference/phase.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot, type PlotSeries } from '../base/plot.ts';
@@ -29,8 +29,7 @@ import {
   type RadiusScale,
 } from './model.ts';
 
-type Backend =
-  { kind: 'gpu'; gpu: GpuContext; renderer: HgLobeGpu } | { kind: 'cpu'; reason: string };
+type Backend = ChosenBackend<HgLobeGpu>;
 
 const READOUT_ROWS = [
   ['normalisation', '∫ p dω (float64 quadrature)'],
@@ -60,7 +59,13 @@ export class HgLobeElement extends WidgetElement {
   private plotScale: RadiusScale | null = null;
   private readouts = new Map<string, HTMLElement>();
   private cost: HTMLElement | null = null;
-  private backend: Promise<Backend> | null = null;
+  private readonly backends = new BackendChooser<HgLobeGpu>(
+    (gpu) => {
+      if (!this.canvas) throw new Error('no canvas');
+      return new HgLobeGpu(gpu, this.canvas);
+    },
+    (reason) => this.fallBackToCpu(reason),
+  );
 
   protected buildStage(stage: HTMLElement): void {
     const figure = document.createElement('div');
@@ -109,23 +114,6 @@ export class HgLobeElement extends WidgetElement {
     readout.append(list, this.cost);
   }
 
-  private chooseBackend(): Promise<Backend> {
-    this.backend ??= (async (): Promise<Backend> => {
-      if (new URLSearchParams(location.search).get('backend') === 'cpu') {
-        return { kind: 'cpu', reason: 'the page was opened with ?backend=cpu' };
-      }
-      try {
-        const gpu = await acquireGpu();
-        if (!this.canvas) throw new Error('no canvas');
-        onDeviceLost((reason) => this.fallBackToCpu(reason));
-        return { kind: 'gpu', gpu, renderer: new HgLobeGpu(gpu, this.canvas) };
-      } catch (error) {
-        return { kind: 'cpu', reason: error instanceof Error ? error.message : String(error) };
-      }
-    })();
-    return this.backend;
-  }
-
   /** After a device loss: a fresh canvas (a WebGPU canvas cannot become 2D) and the CPU path. */
   private fallBackToCpu(reason: string): void {
     if (this.canvas) {
@@ -133,13 +121,13 @@ export class HgLobeElement extends WidgetElement {
       this.canvas.replaceWith(fresh);
       this.canvas = fresh;
     }
-    this.backend = Promise.resolve({ kind: 'cpu', reason });
+    this.backends.useCpu(reason);
     this.scheduleRender();
   }
 
   protected async render(): Promise<void> {
     const inputs = inputsFrom(this.values);
-    const backend = await this.chooseBackend();
+    const backend = await this.backends.choose();
     if (!this.canvas) return;
     const layout = polarLayout(inputs, this.canvas.width, this.canvas.height);
     let histogram: HgHistogram;

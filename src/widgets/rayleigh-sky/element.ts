@@ -2,7 +2,7 @@
 // panorama toward the sun on the GPU, one single-scattering march per pixel,
 // evaluates three probe directions and the direct sun in a compute pass, and shows
 // them next to a converged float64 reference (relative error) and the GPU time.
-import { acquireGpu, onDeviceLost, type GpuContext } from '../../gpu/device.ts';
+import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { RAYLEIGH_SKY } from './schema.ts';
@@ -27,8 +27,7 @@ import {
   type SkyResult,
 } from './model.ts';
 
-type Backend =
-  { kind: 'gpu'; gpu: GpuContext; renderer: RayleighSkyGpu } | { kind: 'cpu'; reason: string };
+type Backend = ChosenBackend<RayleighSkyGpu>;
 
 const READOUT_ROWS = [
   ['zenith', 'Zenith radiance L (R, G, B), sr⁻¹'],
@@ -67,7 +66,13 @@ export class RayleighSkyElement extends WidgetElement {
   private readouts = new Map<string, HTMLElement>();
   private swatch: HTMLElement | null = null;
   private cost: HTMLElement | null = null;
-  private backend: Promise<Backend> | null = null;
+  private readonly backends = new BackendChooser<RayleighSkyGpu>(
+    (gpu) => {
+      if (!this.canvas) throw new Error('no canvas');
+      return new RayleighSkyGpu(gpu, this.canvas);
+    },
+    (reason) => this.fallBackToCpu(reason),
+  );
 
   protected buildStage(stage: HTMLElement): void {
     const figure = document.createElement('div');
@@ -118,23 +123,6 @@ export class RayleighSkyElement extends WidgetElement {
     readout.append(list, this.cost, scope);
   }
 
-  private chooseBackend(): Promise<Backend> {
-    this.backend ??= (async (): Promise<Backend> => {
-      if (new URLSearchParams(location.search).get('backend') === 'cpu') {
-        return { kind: 'cpu', reason: 'the page was opened with ?backend=cpu' };
-      }
-      try {
-        const gpu = await acquireGpu();
-        if (!this.canvas) throw new Error('no canvas');
-        onDeviceLost((reason) => this.fallBackToCpu(reason));
-        return { kind: 'gpu', gpu, renderer: new RayleighSkyGpu(gpu, this.canvas) };
-      } catch (error) {
-        return { kind: 'cpu', reason: error instanceof Error ? error.message : String(error) };
-      }
-    })();
-    return this.backend;
-  }
-
   /** After a device loss: a fresh canvas (a WebGPU canvas cannot become 2D) and the CPU path. */
   private fallBackToCpu(reason: string): void {
     if (this.canvas) {
@@ -142,13 +130,13 @@ export class RayleighSkyElement extends WidgetElement {
       this.canvas.replaceWith(fresh);
       this.canvas = fresh;
     }
-    this.backend = Promise.resolve({ kind: 'cpu', reason });
+    this.backends.useCpu(reason);
     this.scheduleRender();
   }
 
   protected async render(): Promise<void> {
     const inputs = inputsFrom(this.values);
-    const backend = await this.chooseBackend();
+    const backend = await this.backends.choose();
     if (!this.canvas) return;
     let result: SkyResult;
     let capped = false;
