@@ -1,0 +1,111 @@
+// GPU backend of <sb-vre-ray>: the kernel in shaders/kernels/vre-ray.wesl,
+// linked against the shared library, marches the ray in a compute pass (timed
+// with timestamp queries where available) and draws it in a render pass.
+import { runCompute } from '../../gpu/compute.ts';
+import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
+import type { GpuContext } from '../../gpu/device.ts';
+import { linkLibraryKernel } from '../../gpu/link.ts';
+import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import {
+  MARCH_STEPS,
+  depthsFor,
+  viewRange,
+  type VreRayInputs,
+  type VreRayResult,
+} from './model.ts';
+
+const KERNEL = 'kernels/vre-ray.wesl';
+/** Byte size of VreRayParams in the kernel (12 scalars). */
+const PARAMS_BYTES = 48;
+/** Words the march writes: three curves of n + 1 samples and L at the eye. */
+export const OUTPUT_WORDS = 3 * (MARCH_STEPS + 1) + 1;
+
+export function packParams(
+  inputs: VreRayInputs,
+  width: number,
+  height: number,
+): Uint32Array<ArrayBuffer> {
+  const buffer = new ArrayBuffer(PARAMS_BYTES);
+  const f32 = new Float32Array(buffer);
+  const u32 = new Uint32Array(buffer);
+  const [viewMin, viewMax] = viewRange(inputs.length);
+  f32[0] = inputs.sigma;
+  f32[1] = inputs.albedo;
+  f32[2] = inputs.emission;
+  f32[3] = inputs.inscatter;
+  f32[4] = inputs.background;
+  f32[5] = inputs.length;
+  u32[6] = MARCH_STEPS;
+  f32[7] = viewMin;
+  f32[8] = viewMax;
+  f32[9] = width;
+  f32[10] = height;
+  return u32;
+}
+
+/** Splits the kernel's output into the widget's result. */
+export function unpackMarch(
+  inputs: VreRayInputs,
+  output: Uint32Array,
+): Omit<VreRayResult, 'milliseconds' | 'timing'> {
+  const values = new Float32Array(output.buffer, output.byteOffset, output.length);
+  const m = MARCH_STEPS + 1;
+  return {
+    depths: depthsFor(inputs.length),
+    emitted: Float64Array.from(values.subarray(0, m)),
+    inscattered: Float64Array.from(values.subarray(m, 2 * m)),
+    transmittance: Float64Array.from(values.subarray(2 * m, 3 * m)),
+    total: values[3 * m] ?? NaN,
+  };
+}
+
+export class VreRayGpu {
+  private picture: Promise<FullScreenPass> | null = null;
+
+  constructor(
+    private readonly gpu: GpuContext,
+    private readonly canvas: HTMLCanvasElement,
+  ) {}
+
+  private pass(): Promise<FullScreenPass> {
+    this.picture ??= linkLibraryKernel(SHADER_LIBRARY, KERNEL).then((code) =>
+      FullScreenPass.create(this.gpu, this.canvas, {
+        label: 'vre-ray',
+        code,
+        vertexEntry: 'fullScreenVertex',
+        fragmentEntry: 'rayFragment',
+        uniformBytes: PARAMS_BYTES,
+      }),
+    );
+    this.picture.catch(() => {
+      this.picture = null;
+    });
+    return this.picture;
+  }
+
+  async march(inputs: VreRayInputs): Promise<VreRayResult> {
+    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    const { output, gpuMs, wallMs } = await runCompute(this.gpu.device, {
+      code,
+      entryPoint: 'marchRay',
+      inputs: [],
+      outputWords: OUTPUT_WORDS,
+      workgroups: [1],
+      uniforms: packParams(inputs, this.canvas.width, this.canvas.height),
+    });
+    return {
+      ...unpackMarch(inputs, output),
+      milliseconds: gpuMs ?? wallMs,
+      timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+    };
+  }
+
+  async draw(inputs: VreRayInputs): Promise<void> {
+    const pass = await this.pass();
+    await pass.draw(packParams(inputs, this.canvas.width, this.canvas.height));
+  }
+
+  destroy(): void {
+    void this.picture?.then((pass) => pass.destroy());
+  }
+}
