@@ -5,9 +5,13 @@ import type { WidgetEntry } from './parameters.ts';
 import { BEER_LAW } from './beer-law/schema.ts';
 import { HG_LOBE } from './hg-lobe/schema.ts';
 import { RAYLEIGH_SKY } from './rayleigh-sky/schema.ts';
+import { VRE_RAY } from './vre-ray/schema.ts';
+import { RAYMARCH_STEPS } from './raymarch-steps/schema.ts';
 
 export const WIDGET_CATALOG: Readonly<Record<string, WidgetEntry>> = {
   [BEER_LAW.name]: BEER_LAW,
   [HG_LOBE.name]: HG_LOBE,
   [RAYLEIGH_SKY.name]: RAYLEIGH_SKY,
+  [VRE_RAY.name]: VRE_RAY,
+  [RAYMARCH_STEPS.name]: RAYMARCH_STEPS,
 };

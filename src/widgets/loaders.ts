@@ -13,4 +13,12 @@ export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () 
     const module = await import('./rayleigh-sky/element.ts');
     return { define: module.defineRayleighSky };
   },
+  'vre-ray': async () => {
+    const module = await import('./vre-ray/element.ts');
+    return { define: module.defineVreRay };
+  },
+  'raymarch-steps': async () => {
+    const module = await import('./raymarch-steps/element.ts');
+    return { define: module.defineRaymarchSteps };
+  },
 };

@@ -23,7 +23,7 @@ test('the deck walks slide by slide with the keyboard, each slide a deep link', 
     expect(page.url()).toContain(`slide=${i}`);
     const widget = slide.locator(WIDGET_SELECTOR);
     await waitForRender(widget);
-    const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+    const stats = await canvasStats(widget.locator('canvas.sb-canvas').first());
     expect(stats.luminanceDeviation).toBeGreaterThan(10);
     await page.keyboard.press('ArrowRight');
   }
@@ -97,7 +97,7 @@ test('a link with garbage in the hash opens without errors and says what it igno
   await expect(notices.filter({ hasText: 'format version “99”' })).toHaveCount(1);
   await expect(notices.filter({ hasText: 'not a number' })).toHaveCount(1);
   await expect(widget.locator('input[type="number"][name="thickness"]')).toHaveValue('10');
-  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  const stats = await canvasStats(widget.locator('canvas.sb-canvas').first());
   expect(stats.luminanceDeviation).toBeGreaterThan(10);
   // The other widget on the page is untouched by the first one's garbage.
   const second = page.locator('sb-beer-law').nth(1);
@@ -154,7 +154,7 @@ test('a deep link restores the picture exactly, not only the numbers', async ({ 
   await expect(widget.locator('input[type="number"][name="sigma-a"]')).toHaveValue('1.5');
   await expect
     .poll(
-      async () => (await canvasStats(widget.locator('canvas.sb-canvas'))).png.equals(fromLink.png),
+      async () => (await canvasStats(widget.locator('canvas.sb-canvas').first())).png.equals(fromLink.png),
       { timeout: 10_000 },
     )
     .toBe(true);

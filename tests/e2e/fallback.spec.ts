@@ -17,7 +17,7 @@ test('every widget falls back to the CPU with a visible notice', async ({ page }
     for (const widget of await page.locator(WIDGET_SELECTOR).all()) {
       await waitForRender(widget);
       await expect(widget.locator('.sb-notice--warning')).toContainText('WebGPU is not available');
-      const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+      const stats = await canvasStats(widget.locator('canvas.sb-canvas').first());
       expect(stats.luminanceDeviation).toBeGreaterThan(10);
       await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
     }

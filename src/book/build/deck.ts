@@ -105,6 +105,37 @@ export const DECK: readonly DeckSlide[] = [
       'At 2° the sunlight crosses about 19 times the air of the vertical path, and Beer’s law removes the blue first: T_sun ≈ (0.42, 0.13, 0.007).',
     chapter: '03-phase-functions-and-in-scattering',
   },
+  {
+    title: 'The volume rendering equation',
+    widget: 'vre-ray',
+    attributes: {
+      sigma: '1',
+      albedo: '0.5',
+      emission: '0.5',
+      inscatter: '0.3',
+      background: '1',
+      length: '2',
+    },
+    caption:
+      'Radiance at the eye = emission and in-scattering along the ray, each weighted by T(0,s), plus the background times T(0,d).',
+    chapter: '04-the-volume-rendering-equation',
+  },
+  {
+    title: 'Ray marching: left versus midpoint samples',
+    widget: 'raymarch-steps',
+    attributes: { steps: '8', placement: 'midpoint', update: 'exact', density: '1.5', seed: '0' },
+    caption:
+      'The same 8 steps per ray, sampled at the middle of each step instead of its start: the error falls from O(h) to O(h²). Run the sweep to measure the order.',
+    chapter: '05-emission-absorption-and-ray-marching',
+  },
+  {
+    title: 'The linearised update fails',
+    widget: 'raymarch-steps',
+    attributes: { steps: '4', placement: 'left', update: 'linear', density: '1.5', seed: '0' },
+    caption:
+      'T ← T·(1 − σt·h) turns negative where σt·h > 1; the book clamps it to 0 and counts the clamped steps. The exact factor e^(−σt·h) never fails.',
+    chapter: '05-emission-absorption-and-ray-marching',
+  },
 ];
 
 /** Checks every slide against the widget catalog; a bad slide fails the build. */

@@ -1,0 +1,122 @@
+// GPU backend of <sb-raymarch-steps>: the kernel in
+// shaders/kernels/raymarch-steps.wesl, linked against the shared library, marches
+// one ray per pixel in a compute pass (timed with timestamp queries where
+// available, wall time otherwise) and writes the radiances into a storage
+// buffer, which is read back for the RMSE and the error image. The converged
+// reference is the same kernel with midpoint samples and N = REFERENCE_STEPS,
+// computed once per density scale.
+import { runCompute } from '../../gpu/compute.ts';
+import type { GpuContext } from '../../gpu/device.ts';
+import { linkLibraryKernel } from '../../gpu/link.ts';
+import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { MARCH_MIDPOINT } from '../../reference/raymarch.ts';
+import {
+  IMAGE_HEIGHT,
+  IMAGE_WIDTH,
+  REFERENCE_STEPS,
+  type MarchImage,
+  type MarchInputs,
+} from './model.ts';
+
+const KERNEL = 'kernels/raymarch-steps.wesl';
+/** Byte size of RaymarchParams in the kernel (8 scalars). */
+const PARAMS_BYTES = 32;
+
+export function packParams(
+  inputs: MarchInputs,
+  width: number,
+  height: number,
+  steps = inputs.steps,
+): Uint32Array<ArrayBuffer> {
+  const buffer = new ArrayBuffer(PARAMS_BYTES);
+  const f32 = new Float32Array(buffer);
+  const u32 = new Uint32Array(buffer);
+  u32[0] = width;
+  u32[1] = height;
+  u32[2] = steps;
+  u32[3] = inputs.scheme;
+  u32[4] = inputs.linear ? 1 : 0;
+  u32[5] = inputs.seed >>> 0;
+  f32[6] = inputs.density;
+  u32[7] = 0;
+  return u32;
+}
+
+export interface GpuImage extends MarchImage {
+  radiance: Float32Array;
+  /** True when some ray took fewer steps than asked for (the MARCH_MAX_STEPS cap). */
+  capped: boolean;
+  milliseconds: number;
+  timing: 'gpu-timestamp' | 'gpu-wall';
+}
+
+/** Runs renderImage on a device (the widget's, or Dawn's in the tests). */
+export async function renderImageGpu(
+  device: GPUDevice,
+  code: string,
+  inputs: MarchInputs,
+  width: number,
+  height: number,
+  steps = inputs.steps,
+): Promise<GpuImage> {
+  const pixels = width * height;
+  const { output, gpuMs, wallMs } = await runCompute(device, {
+    code,
+    entryPoint: 'renderImage',
+    inputs: [],
+    outputWords: 3 * pixels,
+    workgroups: [Math.ceil(width / 8), Math.ceil(height / 8)],
+    uniforms: packParams(inputs, width, height, steps),
+  });
+  const radiance = new Float32Array(output.buffer, output.byteOffset, pixels);
+  let clampedSteps = 0;
+  let clampedPixels = 0;
+  let capped = false;
+  for (let i = 0; i < pixels; i++) {
+    const clamped = output[pixels + i]!;
+    clampedSteps += clamped;
+    if (clamped > 0) clampedPixels += 1;
+    if (output[2 * pixels + i] !== Math.max(steps, 1)) capped = true;
+  }
+  return {
+    width,
+    height,
+    radiance,
+    clampedSteps,
+    clampedPixels,
+    capped,
+    milliseconds: gpuMs ?? wallMs,
+    timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+  };
+}
+
+export class RaymarchStepsGpu {
+  private readonly references = new Map<number, Promise<Float32Array>>();
+
+  constructor(private readonly gpu: GpuContext) {}
+
+  async render(inputs: MarchInputs, steps = inputs.steps): Promise<GpuImage> {
+    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    return renderImageGpu(this.gpu.device, code, inputs, IMAGE_WIDTH, IMAGE_HEIGHT, steps);
+  }
+
+  /** The converged image (midpoint, exact update, N = REFERENCE_STEPS), once per density. */
+  reference(density: number): Promise<Float32Array> {
+    let cached = this.references.get(density);
+    if (!cached) {
+      const inputs: MarchInputs = {
+        steps: REFERENCE_STEPS,
+        placement: 'midpoint',
+        scheme: MARCH_MIDPOINT,
+        linear: false,
+        density,
+        seed: 0,
+      };
+      cached = this.render(inputs).then((image) => image.radiance);
+      cached.catch(() => this.references.delete(density));
+      if (this.references.size > 16) this.references.clear();
+      this.references.set(density, cached);
+    }
+    return cached;
+  }
+}
