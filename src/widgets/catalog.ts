@@ -7,6 +7,7 @@ import { HG_LOBE } from './hg-lobe/schema.ts';
 import { RAYLEIGH_SKY } from './rayleigh-sky/schema.ts';
 import { VRE_RAY } from './vre-ray/schema.ts';
 import { RAYMARCH_STEPS } from './raymarch-steps/schema.ts';
+import { DELTA_TRACKING } from './delta-tracking/schema.ts';
 
 export const WIDGET_CATALOG: Readonly<Record<string, WidgetEntry>> = {
   [BEER_LAW.name]: BEER_LAW,
@@ -14,4 +15,5 @@ export const WIDGET_CATALOG: Readonly<Record<string, WidgetEntry>> = {
   [RAYLEIGH_SKY.name]: RAYLEIGH_SKY,
   [VRE_RAY.name]: VRE_RAY,
   [RAYMARCH_STEPS.name]: RAYMARCH_STEPS,
+  [DELTA_TRACKING.name]: DELTA_TRACKING,
 };

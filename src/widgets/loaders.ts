@@ -21,4 +21,8 @@ export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () 
     const module = await import('./raymarch-steps/element.ts');
     return { define: module.defineRaymarchSteps };
   },
+  'delta-tracking': async () => {
+    const module = await import('./delta-tracking/element.ts');
+    return { define: module.defineDeltaTracking };
+  },
 };

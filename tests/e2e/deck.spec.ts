@@ -154,7 +154,8 @@ test('a deep link restores the picture exactly, not only the numbers', async ({ 
   await expect(widget.locator('input[type="number"][name="sigma-a"]')).toHaveValue('1.5');
   await expect
     .poll(
-      async () => (await canvasStats(widget.locator('canvas.sb-canvas').first())).png.equals(fromLink.png),
+      async () =>
+        (await canvasStats(widget.locator('canvas.sb-canvas').first())).png.equals(fromLink.png),
       { timeout: 10_000 },
     )
     .toBe(true);

@@ -136,6 +136,22 @@ export const DECK: readonly DeckSlide[] = [
       'T ← T·(1 − σt·h) turns negative where σt·h > 1; the book clamps it to 0 and counts the clamped steps. The exact factor e^(−σt·h) never fails.',
     chapter: '05-emission-absorption-and-ray-marching',
   },
+  {
+    title: 'Delta tracking: unbiased, binary transmittance',
+    widget: 'delta-tracking',
+    attributes: { estimator: 'delta', spp: '4', majorant: 'tight', seed: '0' },
+    caption:
+      'Each sample is 0 or 1 and its mean is exactly T, with variance T(1 − T). Switch to exp(−τ̂) and the mean bias stays, however many samples: run the sweep for both.',
+    chapter: '06-unbiased-transmittance',
+  },
+  {
+    title: 'A majorant that is too low',
+    widget: 'delta-tracking',
+    attributes: { estimator: 'delta', spp: '16', majorant: 'low', seed: '0' },
+    caption:
+      'With σ̄ below σt, delta tracking accepts too few collisions and the image is too bright: E[X] = exp(−∫min(σt, σ̄)). Ratio tracking with the same majorant stays unbiased, at a higher variance.',
+    chapter: '06-unbiased-transmittance',
+  },
 ];
 
 /** Checks every slide against the widget catalog; a bad slide fails the build. */

@@ -1,0 +1,93 @@
+// GPU backend of <sb-delta-tracking>: the kernel in
+// shaders/kernels/delta-tracking.wesl, linked against the shared library,
+// averages spp transmittance estimates per pixel in a compute pass (timed with
+// timestamp queries where available, wall time otherwise) and writes the means,
+// the means of the squares, the lookup counts and the capped counts into a
+// storage buffer, which is read back for the statistics and the two images.
+import { runCompute } from '../../gpu/compute.ts';
+import type { GpuContext } from '../../gpu/device.ts';
+import { linkLibraryKernel } from '../../gpu/link.ts';
+import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import {
+  IMAGE_HEIGHT,
+  IMAGE_WIDTH,
+  SPP_MAX,
+  type TrackingImage,
+  type TrackingInputs,
+} from './model.ts';
+
+const KERNEL = 'kernels/delta-tracking.wesl';
+/** Byte size of DeltaParams in the kernel (8 scalars). */
+const PARAMS_BYTES = 32;
+
+export function packParams(
+  inputs: TrackingInputs,
+  width: number,
+  height: number,
+  spp = inputs.spp,
+): Uint32Array<ArrayBuffer> {
+  const buffer = new ArrayBuffer(PARAMS_BYTES);
+  const f32 = new Float32Array(buffer);
+  const u32 = new Uint32Array(buffer);
+  u32[0] = width;
+  u32[1] = height;
+  u32[2] = spp;
+  u32[3] = inputs.code;
+  f32[4] = inputs.majorantScale;
+  u32[5] = inputs.seed >>> 0;
+  return u32;
+}
+
+export interface GpuImage extends TrackingImage {
+  mean: Float32Array;
+  meanSquare: Float32Array;
+  milliseconds: number;
+  timing: 'gpu-timestamp' | 'gpu-wall';
+}
+
+/** Runs renderImage on a device (the widget's, or Dawn's in the tests). */
+export async function renderImageGpu(
+  device: GPUDevice,
+  code: string,
+  inputs: TrackingInputs,
+  width: number,
+  height: number,
+  spp = inputs.spp,
+): Promise<GpuImage> {
+  const pixels = width * height;
+  const { output, gpuMs, wallMs } = await runCompute(device, {
+    code,
+    entryPoint: 'renderImage',
+    inputs: [],
+    outputWords: 4 * pixels,
+    workgroups: [Math.ceil(width / 8), Math.ceil(height / 8)],
+    uniforms: packParams(inputs, width, height, spp),
+  });
+  const floats = new Float32Array(output.buffer, output.byteOffset, 2 * pixels);
+  let lookups = 0;
+  let capped = 0;
+  for (let i = 0; i < pixels; i++) {
+    lookups += output[2 * pixels + i]!;
+    capped += output[3 * pixels + i]!;
+  }
+  return {
+    width,
+    height,
+    spp: Math.min(Math.max(spp, 1), SPP_MAX),
+    mean: floats.slice(0, pixels),
+    meanSquare: floats.slice(pixels, 2 * pixels),
+    lookups,
+    capped,
+    milliseconds: gpuMs ?? wallMs,
+    timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+  };
+}
+
+export class DeltaTrackingGpu {
+  constructor(private readonly gpu: GpuContext) {}
+
+  async render(inputs: TrackingInputs, spp = inputs.spp): Promise<GpuImage> {
+    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    return renderImageGpu(this.gpu.device, code, inputs, IMAGE_WIDTH, IMAGE_HEIGHT, spp);
+  }
+}
