@@ -5,7 +5,16 @@
 // cancellable sweep over spp = 1, 2, 4, …, 256 plots RMSE against GPU time.
 import { BackendChooser, type Backend } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { LinePlot } from '../base/plot.ts';
+import { timingLabel } from '../base/imageKernel.ts';
+import {
+  gradientCss,
+  imageCanvas,
+  imageFigure,
+  imagePanel,
+  niceScale,
+} from '../base/imagePanel.ts';
+import { ReadoutList } from '../base/readoutList.ts';
+import { SweepControls, logLogSlope } from '../base/sweep.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { DELTA_TRACKING } from './schema.ts';
 import { CPU_HEIGHT, CPU_WIDTH, paintImages, renderCpu } from './cpuBackend.ts';
@@ -14,16 +23,12 @@ import {
   ESTIMATOR_NAMES,
   IMAGE_HEIGHT,
   IMAGE_WIDTH,
-  SWEEP_SPP,
-  convergenceSlope,
   exactImage,
-  gradientCss,
   imageStatistics,
   inputsFrom,
   sampleVariance,
   transmittanceColour,
   varianceColour,
-  varianceScale,
   type TrackingImage,
   type TrackingInputs,
 } from './model.ts';
@@ -51,12 +56,6 @@ interface Frame {
   how: string;
 }
 
-function timingLabel(timing: 'gpu-timestamp' | 'gpu-wall' | 'cpu'): string {
-  if (timing === 'gpu-timestamp') return 'GPU timestamp query';
-  if (timing === 'gpu-wall') return 'wall time; this GPU has no timestamp queries';
-  return 'CPU wall time';
-}
-
 export class DeltaTrackingElement extends WidgetElement {
   protected readonly entry = DELTA_TRACKING;
   protected override presets: readonly Preset[] = [
@@ -69,155 +68,58 @@ export class DeltaTrackingElement extends WidgetElement {
   private imageCanvas: HTMLCanvasElement | null = null;
   private varianceCanvas: HTMLCanvasElement | null = null;
   private scaleTop: HTMLElement | null = null;
-  private plot: LinePlot | null = null;
-  private readouts = new Map<string, HTMLElement>();
+  private readouts: ReadoutList | null = null;
   private cost: HTMLElement | null = null;
-  private sweepButton: HTMLButtonElement | null = null;
-  private cancelButton: HTMLButtonElement | null = null;
-  private progress: HTMLProgressElement | null = null;
-  private sweepStatus: HTMLElement | null = null;
-  private plotHint: HTMLElement | null = null;
+  private sweep: SweepControls | null = null;
   private readonly backends = new BackendChooser(
     (gpu) => new DeltaTrackingGpu(gpu),
     () => {
-      this.cancelSweep('stopped: the GPU was lost');
+      this.sweep?.cancel('stopped: the GPU was lost');
       this.scheduleRender();
     },
   );
-  private sweepToken = 0;
 
   protected buildStage(stage: HTMLElement): void {
-    const figure = document.createElement('div');
-    figure.className = 'sb-dt-figure';
-    this.imageCanvas = this.createCanvas('Estimated transmittance image');
-    this.varianceCanvas = this.createCanvas('Per-pixel variance image');
-    figure.append(
-      this.panel(
-        this.imageCanvas,
-        'Estimated T (mean of spp samples)',
-        gradientCss(transmittanceColour),
-        '0',
-        '1',
-      ),
-      this.panel(
-        this.varianceCanvas,
-        'Variance of one estimate, per pixel',
-        gradientCss((x) => varianceColour(x, 1)),
-        '0',
-        null,
+    this.imageCanvas = imageCanvas('Estimated transmittance image', IMAGE_WIDTH, IMAGE_HEIGHT);
+    this.varianceCanvas = imageCanvas('Per-pixel variance image', IMAGE_WIDTH, IMAGE_HEIGHT);
+    const variance = imagePanel(this.varianceCanvas, 'Variance of one estimate, per pixel', {
+      gradient: gradientCss((x) => varianceColour(x, 1)),
+      low: '0',
+      top: { readout: 'variance-scale' },
+    });
+    this.scaleTop = variance.top;
+    stage.appendChild(
+      imageFigure(
+        imagePanel(this.imageCanvas, 'Estimated T (mean of spp samples)', {
+          gradient: gradientCss(transmittanceColour),
+          low: '0',
+          top: { text: '1' },
+        }).panel,
+        variance.panel,
       ),
     );
-    stage.appendChild(figure);
-
-    const plotArea = document.createElement('div');
-    plotArea.className = 'sb-plot';
-    plotArea.setAttribute('role', 'img');
-    plotArea.setAttribute('aria-label', 'Log–log plot of RMSE against time per render');
-    this.plotHint = document.createElement('p');
-    this.plotHint.className = 'sb-dt-plot-hint';
-    this.plotHint.textContent =
-      'Run the sweep to plot RMSE against the time per render for spp = 1, 2, 4, …, 256. An unbiased estimator falls as spp^(−½); a biased one levels off at its bias.';
-    stage.append(this.plotHint, plotArea);
-    this.plot = new LinePlot(plotArea, {
-      xLabel: 'log₁₀ time per render (ms)',
-      yLabel: 'RMSE',
-      yLog: true,
-      height: 240,
-    });
-
-    const sweep = document.createElement('div');
-    sweep.className = 'sb-dt-sweep';
-    this.sweepButton = document.createElement('button');
-    this.sweepButton.type = 'button';
-    this.sweepButton.className = 'sb-button';
-    this.sweepButton.textContent = 'Run sweep spp = 1 … 256';
-    this.sweepButton.addEventListener('click', () => void this.runSweep());
-    this.cancelButton = document.createElement('button');
-    this.cancelButton.type = 'button';
-    this.cancelButton.className = 'sb-button';
-    this.cancelButton.textContent = 'Cancel';
-    this.cancelButton.disabled = true;
-    this.cancelButton.addEventListener('click', () => this.cancelSweep('cancelled'));
-    this.progress = document.createElement('progress');
-    this.progress.max = SWEEP_SPP.length;
-    this.progress.value = 0;
-    this.progress.setAttribute('aria-label', 'Sweep progress');
-    this.sweepStatus = document.createElement('span');
-    this.sweepStatus.className = 'sb-dt-sweep-status';
-    this.sweepStatus.setAttribute('aria-live', 'polite');
-    this.sweepStatus.textContent = 'No sweep yet.';
-    sweep.append(this.sweepButton, this.cancelButton, this.progress, this.sweepStatus);
-    stage.appendChild(sweep);
-  }
-
-  private createCanvas(label: string): HTMLCanvasElement {
-    const canvas = document.createElement('canvas');
-    canvas.className = 'sb-canvas';
-    canvas.setAttribute('role', 'img');
-    canvas.setAttribute('aria-label', label);
-    canvas.width = IMAGE_WIDTH;
-    canvas.height = IMAGE_HEIGHT;
-    return canvas;
-  }
-
-  /** A canvas with its caption and a colour-scale legend; a null top is a live readout. */
-  private panel(
-    canvas: HTMLCanvasElement,
-    caption: string,
-    gradient: string,
-    low: string,
-    top: string | null,
-  ): HTMLElement {
-    const panel = document.createElement('figure');
-    panel.className = 'sb-dt-panel';
-    const text = document.createElement('figcaption');
-    text.textContent = caption;
-    const legend = document.createElement('div');
-    legend.className = 'sb-dt-scale';
-    const bar = document.createElement('span');
-    bar.className = 'sb-dt-scale-bar';
-    bar.style.background = gradient;
-    bar.setAttribute('aria-hidden', 'true');
-    const lowLabel = document.createElement('span');
-    lowLabel.textContent = low;
-    const topLabel = document.createElement('span');
-    if (top === null) {
-      topLabel.dataset['readout'] = 'variance-scale';
-      this.scaleTop = topLabel;
-    } else {
-      topLabel.textContent = top;
-    }
-    legend.append(lowLabel, bar, topLabel);
-    panel.append(canvas, text, legend);
-    return panel;
+    this.sweep = new SweepControls(
+      stage,
+      this,
+      {
+        name: 'spp',
+        buttonText: 'Run sweep spp = 1 … 256',
+        hint: 'Run the sweep to plot RMSE against the time per render for spp = 1, 2, 4, …, 256. An unbiased estimator falls as spp^(−½); a biased one levels off at its bias.',
+        color: '#3b7dd8',
+        statusClass: 'sb-dt-sweep-status',
+      },
+      () => void this.runSweep(),
+    );
   }
 
   protected buildReadout(readout: HTMLElement): void {
-    const list = document.createElement('dl');
-    list.className = 'sb-readout';
-    for (const [key, label] of READOUT_ROWS) {
-      const row = document.createElement('div');
-      const term = document.createElement('dt');
-      term.textContent = label;
-      const value = document.createElement('dd');
-      value.dataset['readout'] = key;
-      row.append(term, value);
-      list.appendChild(row);
-      this.readouts.set(key, value);
-    }
-    this.cost = document.createElement('p');
-    this.cost.className = 'sb-cost';
-    this.cost.setAttribute('aria-live', 'polite');
-    readout.append(list, this.cost);
+    this.readouts = new ReadoutList(readout, READOUT_ROWS);
+    this.cost = this.readouts.cost;
     this.set('slope', 'run the sweep');
   }
 
   private set(key: string, text: string, state?: 'ok' | 'bad'): void {
-    const element = this.readouts.get(key);
-    if (!element) return;
-    element.textContent = text;
-    element.classList.toggle('sb-ok', state === 'ok');
-    element.classList.toggle('sb-bad', state === 'bad');
+    this.readouts?.set(key, text, state);
   }
 
   /** One image with spp samples on the backend in use, and the exact T to compare it with. */
@@ -255,7 +157,7 @@ export class DeltaTrackingElement extends WidgetElement {
       this.backends.useCpu(
         `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
       );
-      this.cancelSweep('stopped: the GPU path failed');
+      this.sweep?.cancel('stopped: the GPU path failed');
       this.scheduleRender();
       return;
     }
@@ -279,7 +181,7 @@ export class DeltaTrackingElement extends WidgetElement {
     const { image, exact } = frame;
     const variance = sampleVariance(image);
     const stats = imageStatistics(image, exact, variance);
-    const scale = varianceScale(stats.largestVariance);
+    const scale = niceScale(stats.largestVariance);
     if (this.imageCanvas && this.varianceCanvas)
       paintImages(this.imageCanvas, this.varianceCanvas, image, variance, scale);
     if (this.scaleTop)
@@ -321,73 +223,34 @@ export class DeltaTrackingElement extends WidgetElement {
       );
   }
 
-  private cancelSweep(message: string): void {
-    if (!this.cancelButton?.disabled) {
-      this.sweepToken += 1;
-      if (this.sweepStatus) this.sweepStatus.textContent = `Sweep ${message}.`;
-      this.setSweeping(false);
-    }
-  }
-
-  private setSweeping(on: boolean): void {
-    if (this.sweepButton) this.sweepButton.disabled = on;
-    if (this.cancelButton) this.cancelButton.disabled = !on;
-    this.toggleAttribute('data-sweeping', on);
-  }
-
-  /** Renders spp = 1, 2, 4, …, 256, yielding to the page between steps; Cancel stops it. */
-  private async runSweep(): Promise<void> {
-    const token = ++this.sweepToken;
-    const inputs = inputsFrom(this.values);
-    const backend = await this.backends.choose();
-    this.setSweeping(true);
-    this.set('slope', 'sweeping…');
-    const spps: number[] = [];
-    const errors: number[] = [];
-    const times: number[] = [];
-    const label = `${ESTIMATOR_NAMES[inputs.estimator] ?? inputs.estimator}, ${MAJORANT_NAMES[inputs.majorant] ?? inputs.majorant}`;
-    try {
-      for (const [k, n] of SWEEP_SPP.entries()) {
-        if (token !== this.sweepToken) return;
-        if (this.sweepStatus)
-          this.sweepStatus.textContent = `spp = ${n} (${k + 1} of ${SWEEP_SPP.length})…`;
-        const frame = await this.frame(backend, inputs, n);
-        if (token !== this.sweepToken) return;
-        const stats = imageStatistics(frame.image, frame.exact, sampleVariance(frame.image));
-        spps.push(n);
-        errors.push(stats.rmse);
-        times.push(frame.milliseconds);
-        if (this.progress) this.progress.value = k + 1;
-        this.plotSweep(errors, times, label);
-        // Let the page breathe between renders: input, painting and Cancel stay live.
-        await new Promise((resolve) => setTimeout(resolve, 0));
-      }
-    } catch (error) {
-      if (token === this.sweepToken) {
-        this.set('slope', 'failed', 'bad');
-        if (this.sweepStatus)
-          this.sweepStatus.textContent = `Sweep failed: ${error instanceof Error ? error.message : String(error)}`;
-        this.setSweeping(false);
-      }
-      return;
-    }
-    const slope = convergenceSlope(spps, errors);
-    this.set('slope', slope === null ? 'no fit' : `p = ${formatNumber(slope, 3)} (unbiased: −0.5)`);
-    if (this.sweepStatus)
-      this.sweepStatus.textContent = `Sweep done: ${label}, ${backend.kind === 'gpu' ? 'GPU' : 'CPU fallback'}.`;
-    this.setSweeping(false);
-  }
-
-  private plotSweep(errors: number[], times: number[], label: string): void {
-    // uPlot wants ascending x: sort the points by time (small spp costs about the
-    // same fixed dispatch time, so time is not monotone in spp).
-    const order = errors.map((_, i) => i).sort((a, b) => times[a]! - times[b]!);
-    const x = order.map((i) => Math.log10(Math.max(times[i]!, 1e-4)));
-    this.plotHint?.remove();
-    this.plotHint = null;
-    this.plot?.update(x, [
-      { label: `RMSE, ${label}`, color: '#3b7dd8', values: order.map((i) => errors[i]!) },
-    ]);
+  /** Renders spp = 1, 2, 4, …, 256 and fits the slope of log RMSE against log spp. */
+  private runSweep(): Promise<void> {
+    return this.sweep!.run(async () => {
+      const inputs = inputsFrom(this.values);
+      const backend = await this.backends.choose();
+      this.set('slope', 'sweeping…');
+      const label = `${ESTIMATOR_NAMES[inputs.estimator] ?? inputs.estimator}, ${MAJORANT_NAMES[inputs.majorant] ?? inputs.majorant}`;
+      return {
+        label,
+        measure: async (n) => {
+          const frame = await this.frame(backend, inputs, n);
+          const stats = imageStatistics(frame.image, frame.exact, sampleVariance(frame.image));
+          return { rmse: stats.rmse, milliseconds: frame.milliseconds };
+        },
+        finish: (points) => {
+          const slope = logLogSlope(
+            points.map((p) => p.n),
+            points.map((p) => p.rmse),
+          );
+          this.set(
+            'slope',
+            slope === null ? 'no fit' : `p = ${formatNumber(slope, 3)} (unbiased: −0.5)`,
+          );
+          return `${label}, ${backend.kind === 'gpu' ? 'GPU' : 'CPU fallback'}`;
+        },
+        failed: () => this.set('slope', 'failed', 'bad'),
+      };
+    });
   }
 }
 

@@ -4,10 +4,10 @@
 // timestamp queries where available, wall time otherwise) and writes the means,
 // the means of the squares, the lookup counts and the capped counts into a
 // storage buffer, which is read back for the statistics and the two images.
-import { runCompute } from '../../gpu/compute.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { runImageKernel, uniformWords, type GpuTiming } from '../base/imageKernel.ts';
 import {
   IMAGE_HEIGHT,
   IMAGE_WIDTH,
@@ -26,9 +26,7 @@ export function packParams(
   height: number,
   spp = inputs.spp,
 ): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
+  const { u32, f32 } = uniformWords(PARAMS_BYTES);
   u32[0] = width;
   u32[1] = height;
   u32[2] = spp;
@@ -42,7 +40,7 @@ export interface GpuImage extends TrackingImage {
   mean: Float32Array;
   meanSquare: Float32Array;
   milliseconds: number;
-  timing: 'gpu-timestamp' | 'gpu-wall';
+  timing: GpuTiming;
 }
 
 /** Runs renderImage on a device (the widget's, or Dawn's in the tests). */
@@ -55,14 +53,14 @@ export async function renderImageGpu(
   spp = inputs.spp,
 ): Promise<GpuImage> {
   const pixels = width * height;
-  const { output, gpuMs, wallMs } = await runCompute(device, {
+  const { output, milliseconds, timing } = await runImageKernel(
+    device,
     code,
-    entryPoint: 'renderImage',
-    inputs: [],
-    outputWords: 4 * pixels,
-    workgroups: [Math.ceil(width / 8), Math.ceil(height / 8)],
-    uniforms: packParams(inputs, width, height, spp),
-  });
+    width,
+    height,
+    4,
+    packParams(inputs, width, height, spp),
+  );
   const floats = new Float32Array(output.buffer, output.byteOffset, 2 * pixels);
   let lookups = 0;
   let capped = 0;
@@ -78,8 +76,8 @@ export async function renderImageGpu(
     meanSquare: floats.slice(pixels, 2 * pixels),
     lookups,
     capped,
-    milliseconds: gpuMs ?? wallMs,
-    timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+    milliseconds,
+    timing,
   };
 }
 

@@ -20,6 +20,7 @@ import {
   type TransmittanceEstimate,
 } from '../../reference/tracking.ts';
 import type { ParameterValues } from '../parameters.ts';
+import { interpolate, type Rgb } from '../base/imagePanel.ts';
 
 /** Image size of the GPU path; the CPU fallback draws 1/CPU_SCALE of it. */
 export const IMAGE_WIDTH = 128;
@@ -29,9 +30,6 @@ export const CPU_SCALE = 4;
 export const RAY_LENGTH = 2;
 /** Cap on the samples per pixel, as SPP_MAX in the kernel. */
 export const SPP_MAX = 1024;
-/** Sample counts of the convergence sweep. */
-export const SWEEP_SPP = [1, 2, 4, 8, 16, 32, 64, 128, 256] as const;
-
 /** Estimator codes shared with the kernel (DeltaParams.estimator). */
 export const ESTIMATORS: Readonly<Record<string, number>> = {
   biased: 0,
@@ -250,42 +248,6 @@ export function imageStatistics(
   };
 }
 
-/** Least-squares slope of log RMSE against log spp (−½ for an unbiased estimator). */
-export function convergenceSlope(spp: readonly number[], errors: readonly number[]): number | null {
-  const points = spp
-    .map((n, i) => [Math.log(n), Math.log(errors[i] ?? 0)] as const)
-    .filter(([, y]) => Number.isFinite(y));
-  if (points.length < 2) return null;
-  const meanX = points.reduce((s, [x]) => s + x, 0) / points.length;
-  const meanY = points.reduce((s, [, y]) => s + y, 0) / points.length;
-  let sxy = 0;
-  let sxx = 0;
-  for (const [x, y] of points) {
-    sxy += (x - meanX) * (y - meanY);
-    sxx += (x - meanX) ** 2;
-  }
-  return sxx > 0 ? sxy / sxx : null;
-}
-
-/** The top of the variance colour scale: the largest value rounded up to 1, 2 or 5 × 10^k. */
-export function varianceScale(largest: number): number {
-  if (!(largest > 0)) return 1e-6;
-  const decade = 10 ** Math.floor(Math.log10(largest));
-  for (const m of [1, 2, 5, 10]) if (largest <= m * decade) return m * decade;
-  return 10 * decade;
-}
-
-type Rgb = [number, number, number];
-
-function interpolate(stops: readonly Rgb[], x: number): Rgb {
-  const t = Math.min(Math.max(x, 0), 1) * (stops.length - 1);
-  const i = Math.min(Math.floor(t), stops.length - 2);
-  const f = t - i;
-  const a = stops[i]!;
-  const b = stops[i + 1]!;
-  return [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f];
-}
-
 /** Transmittance: opaque (dark slate) through a blue haze to clear (near white). */
 const TRANSMITTANCE_STOPS: readonly Rgb[] = [
   [10, 12, 24],
@@ -310,13 +272,4 @@ export function transmittanceColour(t: number): Rgb {
 
 export function varianceColour(variance: number, scale: number): Rgb {
   return interpolate(VARIANCE_STOPS, Math.sqrt(Math.max(variance, 0) / scale));
-}
-
-/** CSS gradient of a colour scale for its legend (same stops and square-root mapping). */
-export function gradientCss(colour: (x: number) => Rgb): string {
-  const stops = Array.from({ length: 11 }, (_, k) => {
-    const [r, g, b] = colour((k / 10) ** 2);
-    return `rgb(${Math.round(r)}, ${Math.round(g)}, ${Math.round(b)}) ${k * 10}%`;
-  });
-  return `linear-gradient(to right, ${stops.join(', ')})`;
 }

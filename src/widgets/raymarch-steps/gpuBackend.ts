@@ -5,10 +5,10 @@
 // buffer, which is read back for the RMSE and the error image. The converged
 // reference is the same kernel with midpoint samples and N = REFERENCE_STEPS,
 // computed once per density scale.
-import { runCompute } from '../../gpu/compute.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { runImageKernel, uniformWords, type GpuTiming } from '../base/imageKernel.ts';
 import { MARCH_MIDPOINT } from '../../reference/raymarch.ts';
 import {
   IMAGE_HEIGHT,
@@ -28,9 +28,7 @@ export function packParams(
   height: number,
   steps = inputs.steps,
 ): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
+  const { u32, f32 } = uniformWords(PARAMS_BYTES);
   u32[0] = width;
   u32[1] = height;
   u32[2] = steps;
@@ -47,7 +45,7 @@ export interface GpuImage extends MarchImage {
   /** True when some ray took fewer steps than asked for (the MARCH_MAX_STEPS cap). */
   capped: boolean;
   milliseconds: number;
-  timing: 'gpu-timestamp' | 'gpu-wall';
+  timing: GpuTiming;
 }
 
 /** Runs renderImage on a device (the widget's, or Dawn's in the tests). */
@@ -60,14 +58,14 @@ export async function renderImageGpu(
   steps = inputs.steps,
 ): Promise<GpuImage> {
   const pixels = width * height;
-  const { output, gpuMs, wallMs } = await runCompute(device, {
+  const { output, milliseconds, timing } = await runImageKernel(
+    device,
     code,
-    entryPoint: 'renderImage',
-    inputs: [],
-    outputWords: 3 * pixels,
-    workgroups: [Math.ceil(width / 8), Math.ceil(height / 8)],
-    uniforms: packParams(inputs, width, height, steps),
-  });
+    width,
+    height,
+    3,
+    packParams(inputs, width, height, steps),
+  );
   const radiance = new Float32Array(output.buffer, output.byteOffset, pixels);
   let clampedSteps = 0;
   let clampedPixels = 0;
@@ -85,8 +83,8 @@ export async function renderImageGpu(
     clampedSteps,
     clampedPixels,
     capped,
-    milliseconds: gpuMs ?? wallMs,
-    timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+    milliseconds,
+    timing,
   };
 }
 

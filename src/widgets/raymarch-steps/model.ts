@@ -13,6 +13,8 @@ import {
 } from '../../reference/raymarch.ts';
 import { rngSeed } from '../../reference/rng.ts';
 import type { ParameterValues } from '../parameters.ts';
+import { interpolate, type Rgb } from '../base/imagePanel.ts';
+import { SWEEP_POINTS, logLogSlope } from '../base/sweep.ts';
 
 /** Image size of the GPU path; the CPU fallback draws 1/CPU_SCALE of it. */
 export const IMAGE_WIDTH = 256;
@@ -28,7 +30,7 @@ export const BACKGROUND = 0.2;
  */
 export const REFERENCE_STEPS = 1024;
 /** The step counts of the convergence sweep. */
-export const SWEEP_STEPS = [1, 2, 4, 8, 16, 32, 64, 128, 256] as const;
+export const SWEEP_STEPS = SWEEP_POINTS;
 /** Radiance mapped to the top of the colour scale. */
 export const RADIANCE_SCALE = 2.5;
 
@@ -170,43 +172,7 @@ export function maxError(image: ArrayLike<number>, reference: ArrayLike<number>)
  * RMSE ∝ N^slope, so left samples give ≈ −1 and midpoint samples ≈ −2 (physics.md §3).
  * Null with fewer than two usable points.
  */
-export function convergenceSlope(
-  steps: readonly number[],
-  errors: readonly number[],
-): number | null {
-  const points = steps
-    .map((n, i) => [Math.log(n), Math.log(errors[i] ?? 0)] as const)
-    .filter(([, y]) => Number.isFinite(y));
-  if (points.length < 2) return null;
-  const meanX = points.reduce((s, [x]) => s + x, 0) / points.length;
-  const meanY = points.reduce((s, [, y]) => s + y, 0) / points.length;
-  let sxy = 0;
-  let sxx = 0;
-  for (const [x, y] of points) {
-    sxy += (x - meanX) * (y - meanY);
-    sxx += (x - meanX) ** 2;
-  }
-  return sxx > 0 ? sxy / sxx : null;
-}
-
-/** The top of the error colour scale: the largest error rounded up to 1, 2 or 5 × 10^k. */
-export function errorScale(largest: number): number {
-  if (!(largest > 0)) return 1e-6;
-  const decade = 10 ** Math.floor(Math.log10(largest));
-  for (const m of [1, 2, 5, 10]) if (largest <= m * decade) return m * decade;
-  return 10 * decade;
-}
-
-type Rgb = [number, number, number];
-
-function interpolate(stops: readonly Rgb[], x: number): Rgb {
-  const t = Math.min(Math.max(x, 0), 1) * (stops.length - 1);
-  const i = Math.min(Math.floor(t), stops.length - 2);
-  const f = t - i;
-  const a = stops[i]!;
-  const b = stops[i + 1]!;
-  return [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f];
-}
+export const convergenceSlope = logLogSlope;
 
 /** A warm "fire" scale for radiance (dark red through orange to pale yellow), 8-bit sRGB. */
 const RADIANCE_STOPS: readonly Rgb[] = [
@@ -232,13 +198,4 @@ export function radianceColour(radiance: number): Rgb {
 
 export function errorColour(error: number, scale: number): Rgb {
   return interpolate(ERROR_STOPS, Math.sqrt(Math.abs(error) / scale));
-}
-
-/** CSS gradient of the error scale, for its legend (same stops and square-root mapping). */
-export function errorGradientCss(): string {
-  const stops = Array.from({ length: 11 }, (_, k) => {
-    const [r, g, b] = errorColour((k / 10) ** 2, 1);
-    return `rgb(${Math.round(r)}, ${Math.round(g)}, ${Math.round(b)}) ${k * 10}%`;
-  });
-  return `linear-gradient(to right, ${stops.join(', ')})`;
 }
