@@ -5,6 +5,7 @@
 import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot } from '../base/plot.ts';
+import { ReadoutList } from '../base/readoutList.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { BEER_LAW } from './schema.ts';
 import { computeCurveCpu, drawBeamCpu } from './cpuBackend.ts';
@@ -47,8 +48,7 @@ export class BeerLawElement extends WidgetElement {
   private canvas: HTMLCanvasElement | null = null;
   private stage: HTMLElement | null = null;
   private plot: LinePlot | null = null;
-  private readouts = new Map<string, HTMLElement>();
-  private cost: HTMLElement | null = null;
+  private readouts: ReadoutList | null = null;
   private readonly backends = new BackendChooser<BeerLawGpu>(
     (gpu) => {
       if (!this.canvas) throw new Error('no canvas');
@@ -84,22 +84,7 @@ export class BeerLawElement extends WidgetElement {
   }
 
   protected buildReadout(readout: HTMLElement): void {
-    const list = document.createElement('dl');
-    list.className = 'sb-readout';
-    for (const [key, label] of READOUT_ROWS) {
-      const row = document.createElement('div');
-      const term = document.createElement('dt');
-      term.textContent = label;
-      const value = document.createElement('dd');
-      value.dataset['readout'] = key;
-      row.append(term, value);
-      list.appendChild(row);
-      this.readouts.set(key, value);
-    }
-    this.cost = document.createElement('p');
-    this.cost.className = 'sb-cost';
-    this.cost.setAttribute('aria-live', 'polite');
-    readout.append(list, this.cost);
+    this.readouts = new ReadoutList(readout, READOUT_ROWS);
   }
 
   /** After a device loss: a fresh canvas (a WebGPU canvas cannot become 2D) and the CPU path. */
@@ -147,13 +132,8 @@ export class BeerLawElement extends WidgetElement {
     reference: BeerLawResult,
     backend: Backend,
   ): void {
-    const set = (key: string, text: string, state?: 'ok' | 'bad'): void => {
-      const element = this.readouts.get(key);
-      if (!element) return;
-      element.textContent = text;
-      element.classList.toggle('sb-ok', state === 'ok');
-      element.classList.toggle('sb-bad', state === 'bad');
-    };
+    const set = (key: string, text: string, state?: 'ok' | 'bad'): void =>
+      this.readouts?.set(key, text, state);
     const tauExit = reference.opticalDepth[reference.opticalDepth.length - 1] ?? 0;
     set('tau', formatNumber(tauExit));
     set(
@@ -200,8 +180,8 @@ export class BeerLawElement extends WidgetElement {
           : 'CPU wall time';
     const where =
       backend.kind === 'gpu' ? `WebGPU (${backend.gpu.adapterDescription})` : 'CPU fallback';
-    if (this.cost) {
-      this.cost.textContent =
+    if (this.readouts) {
+      this.readouts.cost.textContent =
         `${where}: ${result.transmittance.length} samples of T(s) in ${formatMilliseconds(result.milliseconds)} (${how}); ` +
         `float64 reference on the CPU in ${formatMilliseconds(reference.milliseconds)}.`;
     }

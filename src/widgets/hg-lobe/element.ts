@@ -6,6 +6,7 @@
 import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
 import { hgEval } from '../../reference/phase.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import { ReadoutList } from '../base/readoutList.ts';
 import { LinePlot, type PlotSeries } from '../base/plot.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { HG_LOBE } from './schema.ts';
@@ -57,8 +58,7 @@ export class HgLobeElement extends WidgetElement {
   private plotArea: HTMLElement | null = null;
   private plot: LinePlot | null = null;
   private plotScale: RadiusScale | null = null;
-  private readouts = new Map<string, HTMLElement>();
-  private cost: HTMLElement | null = null;
+  private readouts: ReadoutList | null = null;
   private readonly backends = new BackendChooser<HgLobeGpu>(
     (gpu) => {
       if (!this.canvas) throw new Error('no canvas');
@@ -96,22 +96,7 @@ export class HgLobeElement extends WidgetElement {
   }
 
   protected buildReadout(readout: HTMLElement): void {
-    const list = document.createElement('dl');
-    list.className = 'sb-readout';
-    for (const [key, label] of READOUT_ROWS) {
-      const row = document.createElement('div');
-      const term = document.createElement('dt');
-      term.textContent = label;
-      const value = document.createElement('dd');
-      value.dataset['readout'] = key;
-      row.append(term, value);
-      list.appendChild(row);
-      this.readouts.set(key, value);
-    }
-    this.cost = document.createElement('p');
-    this.cost.className = 'sb-cost';
-    this.cost.setAttribute('aria-live', 'polite');
-    readout.append(list, this.cost);
+    this.readouts = new ReadoutList(readout, READOUT_ROWS);
   }
 
   /** After a device loss: a fresh canvas (a WebGPU canvas cannot become 2D) and the CPU path. */
@@ -224,13 +209,8 @@ export class HgLobeElement extends WidgetElement {
     replay: HgHistogram,
     backend: Backend,
   ): void {
-    const set = (key: string, text: string, state?: 'ok' | 'bad'): void => {
-      const element = this.readouts.get(key);
-      if (!element) return;
-      element.textContent = text;
-      element.classList.toggle('sb-ok', state === 'ok');
-      element.classList.toggle('sb-bad', state === 'bad');
-    };
+    const set = (key: string, text: string, state?: 'ok' | 'bad'): void =>
+      this.readouts?.set(key, text, state);
     const g = inputs.g;
     const integral = sphereIntegral((mu) => hgEval(g, mu));
     set('normalisation', integral.toFixed(10), Math.abs(integral - 1) < 1e-9 ? 'ok' : 'bad');
@@ -288,8 +268,8 @@ export class HgLobeElement extends WidgetElement {
         `float64 twin on the CPU: ≈ ${formatMilliseconds(replay.milliseconds * factor)} for ${n}, ` +
         `scaled ×${factor} from ${formatMilliseconds(replay.milliseconds)} measured on ${replay.sampleCount}`;
     }
-    if (this.cost) {
-      this.cost.textContent =
+    if (this.readouts) {
+      this.readouts.cost.textContent =
         backend.kind === 'gpu'
           ? `WebGPU (${backend.gpu.adapterDescription}): ${nText} in ${formatMilliseconds(histogram.milliseconds)} (${how}); ${twin}.`
           : `CPU fallback: ${nText} in ${formatMilliseconds(histogram.milliseconds)} (${how}, float64 twin).`;

@@ -6,6 +6,7 @@
 import { acquireGpu, onDeviceLost, type GpuContext } from '../../gpu/device.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot } from '../base/plot.ts';
+import { ReadoutList } from '../base/readoutList.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { VRE_RAY } from './schema.ts';
 import { drawRayCpu, marchRayCpu } from './cpuBackend.ts';
@@ -54,8 +55,7 @@ export class VreRayElement extends WidgetElement {
   private canvas: HTMLCanvasElement | null = null;
   private stage: HTMLElement | null = null;
   private plot: LinePlot | null = null;
-  private readouts = new Map<string, HTMLElement>();
-  private cost: HTMLElement | null = null;
+  private readouts: ReadoutList | null = null;
   private backend: Promise<Backend> | null = null;
 
   protected buildStage(stage: HTMLElement): void {
@@ -98,22 +98,7 @@ export class VreRayElement extends WidgetElement {
   }
 
   protected buildReadout(readout: HTMLElement): void {
-    const list = document.createElement('dl');
-    list.className = 'sb-readout';
-    for (const [key, label] of READOUT_ROWS) {
-      const row = document.createElement('div');
-      const term = document.createElement('dt');
-      term.textContent = label;
-      const value = document.createElement('dd');
-      value.dataset['readout'] = key;
-      row.append(term, value);
-      list.appendChild(row);
-      this.readouts.set(key, value);
-    }
-    this.cost = document.createElement('p');
-    this.cost.className = 'sb-cost';
-    this.cost.setAttribute('aria-live', 'polite');
-    readout.append(list, this.cost);
+    this.readouts = new ReadoutList(readout, READOUT_ROWS);
   }
 
   private chooseBackend(): Promise<Backend> {
@@ -178,10 +163,7 @@ export class VreRayElement extends WidgetElement {
     twin: VreRayResult,
     backend: Backend,
   ): void {
-    const set = (key: string, text: string): void => {
-      const element = this.readouts.get(key);
-      if (element) element.textContent = text;
-    };
+    const set = (key: string, text: string): void => this.readouts?.set(key, text);
     const exact = exactRadiance(inputs);
     const n = MARCH_STEPS;
     const T = result.transmittance[n] ?? NaN;
@@ -214,8 +196,8 @@ export class VreRayElement extends WidgetElement {
           : 'CPU wall time';
     const where =
       backend.kind === 'gpu' ? `WebGPU (${backend.gpu.adapterDescription})` : 'CPU fallback';
-    if (this.cost) {
-      this.cost.textContent =
+    if (this.readouts) {
+      this.readouts.cost.textContent =
         `${where}: ${n} midpoint steps in ${formatMilliseconds(result.milliseconds)} (${how}); ` +
         `float64 march on the CPU in ${formatMilliseconds(twin.milliseconds)}.`;
     }
