@@ -5,6 +5,10 @@ import { defineConfig } from '@playwright/test';
 import { CHROMIUM_PATH, NO_WEBGPU_ARGS, WEBGPU_ARGS } from './scripts/chromium.mjs';
 
 const PORT = Number(process.env['E2E_PORT'] ?? 4173);
+// Several checkouts or developers can test side by side: E2E_DIST names the
+// build to serve (default dist/) and E2E_RESULTS where Playwright writes.
+const DIST = process.env['E2E_DIST'] ?? 'dist';
+const RESULTS = process.env['E2E_RESULTS'] ?? 'test-results';
 
 export default defineConfig({
   testDir: 'tests/e2e',
@@ -13,7 +17,8 @@ export default defineConfig({
   fullyParallel: false,
   workers: 1,
   retries: 0,
-  reporter: [['list'], ['json', { outputFile: 'test-results/playwright.json' }]],
+  outputDir: RESULTS,
+  reporter: [['list'], ['json', { outputFile: `${RESULTS}/playwright.json` }]],
   use: {
     baseURL: `http://localhost:${PORT}`,
     viewport: { width: 1280, height: 900 },
@@ -31,7 +36,7 @@ export default defineConfig({
     },
   ],
   webServer: {
-    command: `npx vite preview --port ${PORT} --strictPort`,
+    command: `npx vite preview --port ${PORT} --strictPort --outDir ${DIST}`,
     url: `http://localhost:${PORT}/index.html`,
     reuseExistingServer: !process.env['CI'],
     timeout: 60_000,

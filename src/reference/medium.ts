@@ -8,6 +8,7 @@ import {
   opticalThicknessHomogeneous,
   opticalThicknessSine,
 } from './transmittance.ts';
+import { planeCrossing, rayBoxSegment } from './geometry.ts';
 
 export const MEDIUM_HOMOGENEOUS = 0;
 export const MEDIUM_SINE = 1;
@@ -161,7 +162,6 @@ export interface GridMajorantSegment {
 }
 
 export const GRID_DDA_MAX_CELLS = 256;
-export const GRID_SEGMENT_LIMIT = 1e17;
 
 const AXES = [0, 1, 2] as const;
 const clampBetween = (x: number, lo: number, hi: number): number => Math.min(Math.max(x, lo), hi);
@@ -359,7 +359,7 @@ function roundUpToF32(x: number): number {
 }
 
 export function gridRayParameter(offset: number, slope: number): number {
-  return clampBetween(offset / slope, -FINITE_LIMIT, FINITE_LIMIT);
+  return planeCrossing(offset, slope);
 }
 
 const EMPTY_SEGMENT: [number, number] = [1, 0];
@@ -372,20 +372,7 @@ export function gridSegmentInBounds(
   tMax: number,
 ): [number, number] {
   if (!gridHasVolume(grid)) return [...EMPTY_SEGMENT];
-  let t0 = clampBetween(tMin, -GRID_SEGMENT_LIMIT, GRID_SEGMENT_LIMIT);
-  let t1 = clampBetween(tMax, -GRID_SEGMENT_LIMIT, GRID_SEGMENT_LIMIT);
-  for (const a of AXES) {
-    const [o, d, lo, hi] = [origin[a], direction[a], grid.boundsMin[a], grid.boundsMax[a]];
-    if (d === 0) {
-      if (o < lo || o > hi) return [...EMPTY_SEGMENT];
-      continue;
-    }
-    const enter = gridRayParameter((d > 0 ? lo : hi) - o, d);
-    const exit = gridRayParameter((d > 0 ? hi : lo) - o, d);
-    t0 = Math.max(t0, enter);
-    t1 = Math.min(t1, exit);
-  }
-  return t0 > t1 ? [...EMPTY_SEGMENT] : [t0, t1];
+  return [...rayBoxSegment(grid.boundsMin, grid.boundsMax, origin, direction, tMin, tMax)];
 }
 
 export function gridMajorantAlongRay(
