@@ -1,28 +1,41 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
-// bench/results/latest.json. Quick mode (--quick) uses fewer samples.
+// bench/results/latest.json. Quick mode (--quick) uses fewer samples;
+// --only=transmittance,estimators,widgets runs a subset.
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
 import { benchEstimators } from './estimators.ts';
 import { benchTransmittance } from './transmittance.ts';
-import { printTable, saveTables } from './table.ts';
+import { benchWidgets } from './widgets.ts';
+import { printTable, saveTables, type BenchTable } from './table.ts';
 
 const quick = process.argv.includes('--quick');
+const only = process.argv
+  .find((a) => a.startsWith('--only='))
+  ?.slice('--only='.length)
+  .split(',');
+const wanted = (name: string): boolean => !only || only.includes(name);
+
 const device = await nodeDevice();
-const tables = [
-  await benchTransmittance(device, { n: quick ? 1 << 16 : 1 << 20, repeats: 5 }),
-  await benchEstimators(device, {
-    gpuWalks: quick ? 1 << 14 : 1 << 18,
-    cpuWalks: quick ? 1 << 11 : 1 << 14,
-    repeats: 5,
-  }),
-];
+const tables: BenchTable[] = [];
+if (wanted('transmittance'))
+  tables.push(await benchTransmittance(device, { n: quick ? 1 << 16 : 1 << 20, repeats: 5 }));
+if (wanted('estimators'))
+  tables.push(
+    await benchEstimators(device, {
+      gpuWalks: quick ? 1 << 14 : 1 << 18,
+      cpuWalks: quick ? 1 << 11 : 1 << 14,
+      repeats: 5,
+    }),
+  );
+if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
 for (const table of tables) printTable(table);
 const path = new URL('./results/latest.json', import.meta.url).pathname;
 saveTables(path, tables, {
   date: new Date().toISOString(),
-  device: 'Dawn (webgpu npm package); SwiftShader on machines without a GPU',
-  command: `npm run bench${quick ? ' -- --quick' : ''}`,
+  device:
+    'Dawn (webgpu npm package) for the library; Chromium WebGPU for the widgets; SwiftShader on machines without a GPU',
+  command: `npm run bench -- ${process.argv.slice(2).join(' ')}`.trim(),
 });
 console.log(`\nWrote ${path}`);
 await releaseNodeDevice();

@@ -369,6 +369,23 @@ export abstract class WidgetElement extends HTMLElement {
     this.notices.delete(key);
   }
 
+  /**
+   * Records what the last frame's main work cost, as data-frame-ms and data-frame-timer
+   * on the element: `npm run bench` (bench/widgets.ts) reads them to report every
+   * widget's frame time, and tests can check that a widget measures its cost.
+   */
+  protected recordFrameCost(milliseconds: number, timer: string): void {
+    this.dataset['frameMs'] = String(milliseconds);
+    this.dataset['frameTimer'] = timer;
+  }
+
+  /** Draws again now, visible or not, and resolves when the frame is done (benchmarks). */
+  async redraw(): Promise<void> {
+    while (this.rendering) await new Promise((resolve) => requestAnimationFrame(resolve));
+    this.dirty = true;
+    await this.renderNow();
+  }
+
   /** Renders on the next frame if visible; otherwise when it scrolls into view. */
   protected scheduleRender(): void {
     this.dirty = true;

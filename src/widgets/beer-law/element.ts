@@ -5,6 +5,7 @@
 import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot } from '../base/plot.ts';
+import { timingLabel } from '../base/imageKernel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { BEER_LAW } from './schema.ts';
@@ -172,12 +173,8 @@ export class BeerLawElement extends WidgetElement {
     );
     set('mfp', inputs.sigmaT > 0 ? `${formatNumber(1 / inputs.sigmaT, 4)} m` : '∞ (no medium)');
 
-    const how =
-      result.timing === 'gpu-timestamp'
-        ? 'GPU timestamp query'
-        : result.timing === 'gpu-wall'
-          ? 'wall time; this GPU has no timestamp queries'
-          : 'CPU wall time';
+    const how = timingLabel(result.timing);
+    this.recordFrameCost(result.milliseconds, how);
     const where =
       backend.kind === 'gpu' ? `WebGPU (${backend.gpu.adapterDescription})` : 'CPU fallback';
     if (this.readouts) {

@@ -184,6 +184,7 @@ export class RaymarchStepsElement extends WidgetElement {
     this.set('rmse', formatNumber(error, 3));
     this.set('max-error', formatNumber(largest, 3));
     this.set('time', `${formatMilliseconds(frame.milliseconds)} (${frame.how})`);
+    this.recordFrameCost(frame.milliseconds, frame.how);
     if (!inputs.linear) {
       this.set('clamped', '0 (exact update)', 'ok');
       this.clearNotice('clamped');

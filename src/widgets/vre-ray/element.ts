@@ -6,6 +6,7 @@
 import { acquireGpu, onDeviceLost, type GpuContext } from '../../gpu/device.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot } from '../base/plot.ts';
+import { timingLabel } from '../base/imageKernel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { VRE_RAY } from './schema.ts';
@@ -188,12 +189,8 @@ export class VreRayElement extends WidgetElement {
         : `${formatNumber(difference, 2)} (absolute)`,
     );
 
-    const how =
-      result.timing === 'gpu-timestamp'
-        ? 'GPU timestamp query'
-        : result.timing === 'gpu-wall'
-          ? 'wall time; this GPU has no timestamp queries'
-          : 'CPU wall time';
+    const how = timingLabel(result.timing);
+    this.recordFrameCost(result.milliseconds, how);
     const where =
       backend.kind === 'gpu' ? `WebGPU (${backend.gpu.adapterDescription})` : 'CPU fallback';
     if (this.readouts) {
