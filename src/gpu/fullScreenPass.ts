@@ -4,6 +4,7 @@
 // scopes live here once.
 import type { GpuContext } from './device.ts';
 import { withErrorScopes } from './errors.ts';
+import type { GpuTimer } from './timing.ts';
 
 export interface FullScreenPassOptions {
   /** Names the pass in error messages, e.g. "beer-law". */
@@ -70,8 +71,17 @@ export class FullScreenPass {
     return new FullScreenPass(gpu, options.label, parts);
   }
 
-  /** Uploads the uniforms and draws the full-screen triangle into the canvas. */
-  async draw(uniforms: ArrayBufferView<ArrayBuffer>): Promise<void> {
+  /**
+   * Uploads the uniforms and draws the full-screen triangle into the canvas. With
+   * `timing`, it draws the same picture in `passes` render passes (default 1) of one
+   * submit and the timer spans them all (read it with `timer.read()`): timestamps are
+   * quantized (100 µs in Chrome), so a fast picture is timed over several passes.
+   */
+  async draw(
+    uniforms: ArrayBufferView<ArrayBuffer>,
+    timing?: { timer: GpuTimer; passes?: number },
+  ): Promise<void> {
+    const passes = Math.max(1, Math.round(timing?.passes ?? 1));
     const { device } = this.gpu;
     await withErrorScopes(device, `${this.label} draw`, () => {
       device.queue.writeBuffer(
@@ -82,20 +92,26 @@ export class FullScreenPass {
         uniforms.byteLength,
       );
       const encoder = device.createCommandEncoder();
-      const pass = encoder.beginRenderPass({
-        colorAttachments: [
-          {
-            view: this.context.getCurrentTexture().createView(),
-            loadOp: 'clear',
-            storeOp: 'store',
-            clearValue: { r: 0, g: 0, b: 0, a: 1 },
-          },
-        ],
-      });
-      pass.setPipeline(this.pipeline);
-      pass.setBindGroup(0, this.bindGroup);
-      pass.draw(3);
-      pass.end();
+      const view = this.context.getCurrentTexture().createView();
+      for (let k = 0; k < passes; k++) {
+        const timestampWrites = timing?.timer.renderPassTimestamps(k === 0, k === passes - 1);
+        const pass = encoder.beginRenderPass({
+          colorAttachments: [
+            {
+              view,
+              loadOp: 'clear',
+              storeOp: 'store',
+              clearValue: { r: 0, g: 0, b: 0, a: 1 },
+            },
+          ],
+          ...(timestampWrites ? { timestampWrites } : {}),
+        });
+        pass.setPipeline(this.pipeline);
+        pass.setBindGroup(0, this.bindGroup);
+        pass.draw(3);
+        pass.end();
+      }
+      timing?.timer.resolve(encoder);
       device.queue.submit([encoder.finish()]);
     });
   }

@@ -41,9 +41,17 @@ export class GpuTimer {
     };
   }
 
-  renderPassTimestamps(): GPURenderPassTimestampWrites | undefined {
-    if (!this.querySet) return undefined;
-    return { querySet: this.querySet, beginningOfPassWriteIndex: 0, endOfPassWriteIndex: 1 };
+  /**
+   * Spread into a render pass descriptor. To time several passes as one span, give
+   * the first pass `begin` only and the last `end` only.
+   */
+  renderPassTimestamps(begin = true, end = true): GPURenderPassTimestampWrites | undefined {
+    if (!this.querySet || !(begin || end)) return undefined;
+    return {
+      querySet: this.querySet,
+      ...(begin ? { beginningOfPassWriteIndex: 0 } : {}),
+      ...(end ? { endOfPassWriteIndex: 1 } : {}),
+    };
   }
 
   resolve(encoder: GPUCommandEncoder): void {

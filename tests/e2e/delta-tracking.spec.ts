@@ -4,6 +4,10 @@
 // biases delta tracking high, the state round-trips through the URL,
 // presentation mode and presets work, the sweep completes and can be cancelled,
 // and without WebGPU the float64 twin draws at reduced resolution and says so.
+// The comparison view (view=compare): ten labelled images (equal samples, equal
+// time), the variance toggle, the sweep of all five estimators (five series,
+// cancellable), deep links, presentation mode and the CPU fallback.
+import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
 
@@ -162,3 +166,242 @@ test('?backend=cpu: the float64 twin draws at reduced resolution and says so', a
   expect(parseDisplayed(await readout(widget, 'slope'))).toBeGreaterThan(-0.35);
   expect(errors).toEqual([]);
 });
+
+/**
+ * Opens the page with the widget in the comparison view and waits until all ten
+ * images are rendered: on SwiftShader the calibration and the ten images (each
+ * timed three times) take a few seconds, more on a busy machine.
+ */
+async function openComparison(
+  page: Page,
+  state: Record<string, string> = {},
+  query = '',
+): Promise<Locator> {
+  const hash = Object.entries({ view: 'compare', ...state })
+    .map(([k, v]) => `${ID}.${k}=${v}`)
+    .join('&');
+  await page.goto(`${CHAPTER}${query}#${hash}`);
+  const widget = page.locator('sb-delta-tracking').first();
+  await widget.scrollIntoViewIfNeeded();
+  await waitForComparison(widget);
+  return widget;
+}
+
+/** Waits until the comparison has rendered all ten images for the current settings. */
+async function waitForComparison(widget: Locator): Promise<void> {
+  await expect(widget.locator('.sb-dt-compare-status')).toContainText('Equal time: budget', {
+    timeout: 90_000,
+  });
+  await expect(widget.locator('.sb-dt-compare')).not.toHaveAttribute('aria-busy', 'true');
+}
+
+async function cellSpp(widget: Locator, row: 'samples' | 'time'): Promise<number[]> {
+  return widget
+    .locator(`.sb-dt-row[data-row="${row}"] canvas.sb-canvas`)
+    .evaluateAll((canvases) => canvases.map((c) => Number((c as HTMLElement).dataset['spp'])));
+}
+
+test('compare view: ten non-blank labelled images, equal samples and equal time', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openComparison(page, { spp: '8' });
+  const canvases = widget.locator('.sb-dt-cell canvas.sb-canvas');
+  await expect(canvases).toHaveCount(10);
+  for (let i = 0; i < 10; i++) {
+    const stats = await canvasStats(canvases.nth(i));
+    expect(stats.luminanceDeviation).toBeGreaterThan(5);
+    expect(stats.distinctColours).toBeGreaterThan(5);
+  }
+  // Every image says what it is, as text under it and to screen readers.
+  const captions = widget.locator('.sb-dt-cell figcaption');
+  await expect(captions).toHaveCount(10);
+  for (const text of await captions.allTextContents()) {
+    expect(text).toMatch(/spp \d+ · [\d.]+ (ms|µs)/);
+    expect(text).toContain('RMSE');
+    expect(text).toContain('bias');
+  }
+  await expect(canvases.first()).toHaveAttribute('aria-label', /biased exp\(−τ̂\), equal samples/);
+  // Equal samples: all at the chosen spp. Equal time: the reference (delta
+  // tracking) keeps it, the others get the spp their measured cost allows.
+  expect(await cellSpp(widget, 'samples')).toEqual([8, 8, 8, 8, 8]);
+  const timeSpp = await cellSpp(widget, 'time');
+  expect(timeSpp[1]).toBe(8);
+  expect(new Set(timeSpp).size).toBeGreaterThan(1);
+  await expect(widget.locator('.sb-dt-row[data-row="time"] .sb-dt-row-title')).toContainText(
+    'the time of delta tracking at spp = 8',
+  );
+  // The biased estimator is flagged in both rows; the unbiased ones are not.
+  const biasedCells = widget.locator('.sb-dt-cell[data-estimator="biased"] .sb-dt-biased');
+  await expect(biasedCells).toHaveCount(2);
+  await expect(
+    widget.locator('.sb-dt-cell:not([data-estimator="biased"]) .sb-dt-biased'),
+  ).toHaveCount(0);
+  // Readouts: the budget, the cost per sample and lookups of each estimator.
+  await expect(widget.locator('[data-readout="budget"]')).toContainText('delta tracking × spp 8');
+  expect(parseDisplayed(await readout(widget, 'lookups-urm'))).toBeGreaterThan(5);
+  expect(parseDisplayed(await readout(widget, 'lookups-biased'))).toBe(1);
+  await expect(widget.locator('[data-readout="cost-ratio"]')).toContainText(/ms|µs/);
+  await expect(widget.locator('[data-readout="timing"]')).toHaveText(
+    /GPU timestamp query|wall time/,
+  );
+  // The single view's pictures and readouts are not in the document meanwhile.
+  await expect(widget.locator('[data-readout="rmse"]')).toHaveCount(0);
+  expect(errors).toEqual([]);
+});
+
+test('compare view: the grid switches to per-pixel variance without re-rendering, delta tracking near T(1 − T)', async ({
+  page,
+}) => {
+  const widget = await openComparison(page, { spp: '8' });
+  const status = await widget.locator('.sb-dt-compare-status').textContent();
+  const before = await canvasStats(widget.locator('.sb-dt-cell canvas.sb-canvas').nth(1));
+  const rendered = Number(await widget.getAttribute('data-rendered'));
+  await control(widget, 'grid').selectOption('variance');
+  await waitForRender(widget, rendered + 1);
+  await expect(widget.locator('.sb-dt-legend')).toContainText('Variance of one estimate');
+  const after = await canvasStats(widget.locator('.sb-dt-cell canvas.sb-canvas').nth(1));
+  expect(after.png.equals(before.png)).toBe(false);
+  expect(after.distinctColours).toBeGreaterThan(5);
+  // The same images, repainted: the measured times did not change.
+  await expect(widget.locator('.sb-dt-compare-status')).toHaveText(status ?? '');
+  // Delta tracking's variance per sample is T(1 − T), 0.0950 averaged over the image.
+  const caption = await widget
+    .locator('.sb-dt-row[data-row="samples"] .sb-dt-cell[data-estimator="delta"] figcaption')
+    .textContent();
+  const meanVariance = parseDisplayed(/mean Var (\S+)/.exec(caption ?? '')?.[1] ?? '');
+  expect(meanVariance).toBeGreaterThan(0.085);
+  expect(meanVariance).toBeLessThan(0.105);
+  expect(page.url()).toContain('grid=variance');
+});
+
+test('compare view: the sweep of all five estimators draws five series with fitted slopes, and can be cancelled', async ({
+  page,
+}) => {
+  test.setTimeout(180_000);
+  const errors = trackErrors(page);
+  const widget = await openComparison(page);
+  const run = widget.getByRole('button', { name: /Sweep all five/ });
+  await run.click();
+  await expect(widget.locator('.sb-dt-sweepall-status')).toContainText('Sweep done', {
+    timeout: 150_000,
+  });
+  await expect(widget.locator('progress')).toHaveJSProperty('value', 45);
+  const legend = widget.locator('.sb-plot .u-legend .u-series');
+  // uPlot's legend lists x first, then one entry per series.
+  await expect(legend).toHaveCount(6);
+  const labels = (await legend.allTextContents()).slice(1);
+  for (const name of [
+    'biased exp(−τ̂)',
+    'delta tracking',
+    'ratio tracking',
+    'residual ratio tracking',
+    'unbiased ray marching',
+  ])
+    expect(labels.some((label) => label.includes(name) && /p = -?[\d.]+/.test(label))).toBe(true);
+  for (const key of ['biased', 'delta', 'ratio', 'residual', 'urm'])
+    expect(Number.isFinite(parseDisplayed(await readout(widget, `slope-${key}`)))).toBe(true);
+  // Against spp (no timing in it): −½ for the unbiased four, a plateau for exp(−τ̂).
+  for (const key of ['delta', 'ratio', 'residual', 'urm']) {
+    const p = parseDisplayed(await readout(widget, `spp-slope-${key}`));
+    expect(p).toBeGreaterThan(-0.6);
+    expect(p).toBeLessThan(-0.4);
+  }
+  expect(parseDisplayed(await readout(widget, 'spp-slope-biased'))).toBeGreaterThan(-0.2);
+  await run.click();
+  await expect(widget.locator('.sb-dt-sweepall-status')).toContainText('of 45');
+  await widget.getByRole('button', { name: 'Cancel' }).click();
+  await expect(widget.locator('.sb-dt-sweepall-status')).toContainText('cancelled');
+  await expect(run).toBeEnabled();
+  expect(
+    await widget.locator('progress').evaluate((p: HTMLProgressElement) => p.value),
+  ).toBeLessThan(45);
+  expect(errors).toEqual([]);
+});
+
+test('a deep link #…view=compare restores the comparison and its settings', async ({ page }) => {
+  const widget = await openComparison(page, {
+    grid: 'variance',
+    estimator: 'ratio',
+    spp: '8',
+    majorant: 'loose',
+  });
+  await expect(control(widget, 'view')).toHaveValue('compare');
+  await expect(control(widget, 'grid')).toHaveValue('variance');
+  await expect(control(widget, 'grid')).toBeVisible();
+  await expect(control(widget, 'estimator')).toHaveValue('ratio');
+  await expect(control(widget, 'majorant')).toHaveValue('loose');
+  await expect(widget.locator('.sb-dt-legend')).toContainText('Variance of one estimate');
+  expect(await cellSpp(widget, 'samples')).toEqual([8, 8, 8, 8, 8]);
+  expect((await cellSpp(widget, 'time'))[2]).toBe(8);
+  await expect(widget.locator('.sb-dt-row[data-row="time"] .sb-dt-row-title')).toContainText(
+    'the time of ratio tracking at spp = 8',
+  );
+  await expect(widget.locator('.sb-cost')).toContainText('loose majorant');
+  // Back to one estimator: its two pictures return and the grid setting hides.
+  const rendered = Number(await widget.getAttribute('data-rendered'));
+  await control(widget, 'view').selectOption('single');
+  await waitForRender(widget, rendered + 1);
+  await expect(widget.locator('canvas.sb-canvas')).toHaveCount(2);
+  await expect(control(widget, 'grid')).toBeHidden();
+  expect(page.url()).not.toContain('view=compare');
+});
+
+test('compare view in presentation mode: the grid fills the screen with readable captions', async ({
+  page,
+}) => {
+  const widget = await openComparison(page);
+  await widget.locator('select[name="view"]').focus();
+  await page.keyboard.press('f');
+  await expect(widget.locator('.sb-widget')).toHaveClass(/is-presenting/);
+  await expect(widget.locator('.sb-dt-cell canvas.sb-canvas').first()).toBeInViewport();
+  const size = await widget
+    .locator('.sb-dt-cell figcaption')
+    .first()
+    .evaluate((el) => parseFloat(getComputedStyle(el).fontSize));
+  expect(size).toBeGreaterThanOrEqual(16);
+  // Five images side by side in a row at 1280 px.
+  const boxes = await widget
+    .locator('.sb-dt-row[data-row="samples"] canvas.sb-canvas')
+    .evaluateAll((canvases) => canvases.map((c) => c.getBoundingClientRect().top));
+  expect(new Set(boxes.map(Math.round)).size).toBe(1);
+  await page.keyboard.press('Escape');
+  await expect(widget.locator('.sb-widget')).not.toHaveClass(/is-presenting/);
+});
+
+test('?backend=cpu, compare view: the float64 twin draws all ten images and says so', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openComparison(page, {}, '?backend=cpu');
+  await expect(widget.locator('.sb-notice--warning')).toContainText('CPU wall time');
+  await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
+  await expect(widget.locator('[data-readout="timing"]')).toHaveText('CPU wall time');
+  const canvases = widget.locator('.sb-dt-cell canvas.sb-canvas');
+  await expect(canvases).toHaveCount(10);
+  for (let i = 0; i < 10; i++)
+    expect((await canvasStats(canvases.nth(i))).luminanceDeviation).toBeGreaterThan(5);
+  expect(errors).toEqual([]);
+});
+
+for (const theme of ['light', 'dark'] as const)
+  test(`compare view passes the axe-core accessibility check (${theme} theme), after a sweep`, async ({
+    page,
+  }) => {
+    test.setTimeout(180_000);
+    await page.emulateMedia({ colorScheme: theme });
+    const widget = await openComparison(page, { majorant: 'low' });
+    await widget.getByRole('button', { name: /Sweep all five/ }).click();
+    await expect(widget.locator('.sb-dt-sweepall-status')).toContainText('of 45');
+    await widget.getByRole('button', { name: 'Cancel' }).click();
+    await expect(widget.locator('.sb-dt-sweepall-status')).toContainText('cancelled');
+    const results = await new AxeBuilder({ page })
+      .include('sb-delta-tracking')
+      .withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa'])
+      .analyze();
+    expect(
+      results.violations.map(
+        (v) => `${v.id}: ${v.nodes.map((n) => n.target.join(' ')).join(', ')}`,
+      ),
+    ).toEqual([]);
+  });

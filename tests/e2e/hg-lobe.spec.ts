@@ -1,9 +1,11 @@
-// <sb-hg-lobe> in Chromium with WebGPU (SwiftShader): it draws the lobe, its
-// controls change the picture and the numbers, its readouts agree with the closed
-// forms of physics.md §2.2 (normalisation, peak values, mean cosine = g) and its
-// histogram passes the chi-square test, its state round-trips through the URL,
-// presentation mode and the presets work from the keyboard, and without WebGPU
-// (or after a device loss) it falls back to the CPU twin and says so.
+// <sb-hg-lobe> in Chromium with WebGPU (SwiftShader): it draws the lobe (polar and
+// 3D), its controls change the pictures and the numbers, the 3D lobe turns with the
+// arrow keys and a drag, its readouts agree with the closed forms of physics.md
+// §2.2 (normalisation, peak values, mean cosine = g) and its histogram passes the
+// chi-square test, the error-versus-time sweep draws and can be cancelled, its
+// state round-trips through the URL, presentation mode and the presets work from
+// the keyboard, and without WebGPU (or after a device loss) it falls back to the
+// CPU twin and says so.
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import {
@@ -35,6 +37,17 @@ async function openSlide(page: Page, state: Record<string, string> = {}): Promis
   const widget = page.locator(`#${id}`);
   await waitForRender(widget);
   return widget;
+}
+
+/** The number of 3D frames drawn so far (the figure counts them; its canvas may be replaced). */
+async function framesDrawn(widget: Locator): Promise<number> {
+  return Number(await widget.locator('.sb-hg-3d-figure').getAttribute('data-drawn'));
+}
+
+/** Waits for a 3D frame after `before` and screenshots the 3D canvas. */
+async function nextFrame(widget: Locator, before: number): Promise<Buffer> {
+  await expect.poll(() => framesDrawn(widget)).toBeGreaterThan(before);
+  return (await canvasStats(widget.locator('canvas.sb-hg-3d'))).png;
 }
 
 async function readout(widget: Locator, key: string): Promise<string> {
@@ -71,14 +84,14 @@ test('draws a non-blank lobe on the GPU and reports the GPU cost next to the CPU
 }) => {
   const errors = trackErrors(page);
   const widget = await openSlide(page);
-  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  const stats = await canvasStats(widget.locator('canvas.sb-hg-polar'));
   expect(stats.luminanceDeviation).toBeGreaterThan(10);
   expect(stats.distinctColours).toBeGreaterThan(20);
   await expect(widget.locator('.sb-cost')).toContainText('WebGPU');
   await expect(widget.locator('.sb-cost')).toContainText('float64 twin on the CPU');
   await expect(widget.locator('.sb-notice--warning')).toHaveCount(0);
   await expect(widget.locator('.sb-plot canvas').first()).toBeVisible();
-  await expect(widget.locator('.sb-hg-labels')).toContainText('incident beam');
+  await expect(widget.locator('.sb-hg-polar-figure .sb-hg-labels')).toContainText('incident beam');
   expect(errors).toEqual([]);
 });
 
@@ -103,7 +116,9 @@ test('the readouts agree with physics.md §2.2: ∫p dω = 1, the peak values, �
 
 test('moving g changes the picture, the numbers and the URL', async ({ page }) => {
   const widget = await openSlide(page, { g: '0.6' });
-  const before = await canvasStats(widget.locator('canvas.sb-canvas'));
+  const before = await canvasStats(widget.locator('canvas.sb-hg-polar'));
+  await expect.poll(() => framesDrawn(widget)).toBeGreaterThan(0);
+  const before3d = (await canvasStats(widget.locator('canvas.sb-hg-3d'))).png;
   const forwardBefore = await readout(widget, 'forward');
   const rendered = Number(await widget.getAttribute('data-rendered'));
   const slider = widget.locator('input[type="range"][name="g"]');
@@ -115,8 +130,11 @@ test('moving g changes the picture, the numbers and the URL', async ({ page }) =
   await expect
     .poll(async () => parseDisplayed(await readout(widget, 'forward')))
     .toBeCloseTo(hgPeak(Math.fround(0.8), true), 3);
-  const after = await canvasStats(widget.locator('canvas.sb-canvas'));
+  const after = await canvasStats(widget.locator('canvas.sb-hg-polar'));
   expect(after.png.equals(before.png)).toBe(false);
+  await expect
+    .poll(async () => (await canvasStats(widget.locator('canvas.sb-hg-3d'))).png.equals(before3d))
+    .toBe(false);
   expect(page.url()).toContain('g=0.8');
   await expectSoundNumbers(widget, Math.fround(0.8));
 });
@@ -140,7 +158,9 @@ test('a deep link restores the state exactly', async ({ page }) => {
     Number((0.0176838825657661).toPrecision(displayedDigits(forward))),
   );
   await expect(widget.locator('.sb-cost')).toContainText('4096 samples');
-  await expect(widget.locator('.sb-hg-labels')).toContainText('outline: Rayleigh');
+  await expect(widget.locator('.sb-hg-polar-figure .sb-hg-labels')).toContainText(
+    'outline: Rayleigh',
+  );
   await expectSoundNumbers(widget, -0.5);
 });
 
@@ -153,7 +173,7 @@ test('invalid values are clamped and the widget says so', async ({ page }) => {
   const warnings = widget.locator('.sb-notice--warning');
   await expect(warnings).toHaveCount(2);
   await expect(warnings.first()).toContainText('clamped');
-  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  const stats = await canvasStats(widget.locator('canvas.sb-hg-polar'));
   expect(stats.luminanceDeviation).toBeGreaterThan(10);
   expect(errors).toEqual([]);
 });
@@ -170,7 +190,7 @@ test('presentation mode: F enters and fills the screen, number keys recall the p
   expect(box?.width).toBeGreaterThan(1200);
   expect(box?.height).toBeGreaterThan(850);
   expect(page.url()).toContain('present=1');
-  await expect(widget.locator('canvas.sb-canvas')).toBeInViewport();
+  await expect(widget.locator('canvas.sb-hg-polar')).toBeInViewport();
   await page.keyboard.press('4');
   await expect(widget.locator('.sb-preset-toast')).toHaveText('4 · g = 0.9 (clouds)');
   await expect(controlValue(widget, 'g')).toHaveValue('0.9');
@@ -196,7 +216,7 @@ test('?backend=cpu: the CPU twin draws the same lobe and computes the same numbe
   await expect(widget.locator('.sb-notice--warning')).toContainText('WebGPU is not available');
   await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
   await expect(widget.locator('.sb-cost')).toContainText('16384 samples');
-  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  const stats = await canvasStats(widget.locator('canvas.sb-hg-polar'));
   expect(stats.luminanceDeviation).toBeGreaterThan(10);
   // physics.md §2.2 table: g = 0.3 gives p(μ = 1) = 0.211123904101494 sr⁻¹.
   const forward = await readout(widget, 'forward');
@@ -247,8 +267,12 @@ test('when the GPU device is lost, the widget falls back to the CPU and says so'
   await page.evaluate(() => (window as unknown as { testDevice: GPUDevice }).testDevice.destroy());
   await expect(widget.locator('.sb-notice--warning')).toContainText('device was lost');
   await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
-  const stats = await canvasStats(widget.locator('canvas.sb-canvas'));
+  const stats = await canvasStats(widget.locator('canvas.sb-hg-polar'));
   expect(stats.luminanceDeviation).toBeGreaterThan(10);
+  // The 3D lobe is drawn again on a fresh canvas, as the twin's wireframe.
+  await expect(widget.locator('canvas.sb-hg-3d')).toHaveAttribute('aria-label', /CPU fallback/);
+  const wireframe = await canvasStats(widget.locator('canvas.sb-hg-3d'));
+  expect(wireframe.luminanceDeviation).toBeGreaterThan(10);
   expect(errors).toEqual([]);
 });
 
@@ -258,10 +282,149 @@ test('passes an axe accessibility check in both themes (labelled controls, contr
   for (const colorScheme of ['light', 'dark'] as const) {
     await page.emulateMedia({ colorScheme });
     const widget = await openSlide(page, { scale: 'log' });
-    await expect(widget.locator('.sb-hg-labels')).toContainText('10');
+    await expect(widget.locator('.sb-hg-polar-figure .sb-hg-labels')).toContainText('10');
     const results = await new AxeBuilder({ page })
       .include(`#${await widget.getAttribute('id')}`)
       .analyze();
     expect(results.violations.map((v) => `${v.id}: ${v.help}`)).toEqual([]);
   }
+});
+
+test('the 3D lobe is drawn on the GPU, is accessible, and turns with the arrow keys and a drag', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openSlide(page, { g: '0.6', compare: 'isotropic' });
+  const canvas = widget.locator('canvas.sb-hg-3d');
+  await expect(canvas).toHaveAttribute('tabindex', '0');
+  await expect(canvas).toHaveAttribute('role', 'img');
+  await expect(canvas).toHaveAttribute('aria-label', /Henyey–Greenstein lobe for g = 0\.6/);
+  await expect(canvas).toHaveAttribute('aria-label', /isotropic sphere/);
+  await expect.poll(() => framesDrawn(widget)).toBeGreaterThan(0);
+  const stats = await canvasStats(canvas);
+  expect(stats.luminanceDeviation).toBeGreaterThan(10);
+  expect(stats.distinctColours).toBeGreaterThan(40);
+  await expect(widget.locator('.sb-hg-3d-figure .sb-hg-labels')).toContainText('incident beam');
+  // The arrow keys turn it once it has focus (and do not scroll the page). Home
+  // first draws the first view once more, at the canvas's settled size.
+  await canvas.focus();
+  let frames = await framesDrawn(widget);
+  await page.keyboard.press('Home');
+  const before = await nextFrame(widget, frames);
+  const scroll = await page.evaluate(() => scrollY);
+  const label = await canvas.getAttribute('aria-label');
+  frames = await framesDrawn(widget);
+  await page.keyboard.press('ArrowRight');
+  const turned = await nextFrame(widget, frames);
+  expect(turned.equals(before)).toBe(false);
+  expect(await page.evaluate(() => scrollY)).toBe(scroll);
+  await expect(canvas).not.toHaveAttribute('aria-label', label ?? '');
+  frames = await framesDrawn(widget);
+  await page.keyboard.press('ArrowUp');
+  const raised = await nextFrame(widget, frames);
+  expect(raised.equals(turned)).toBe(false);
+  // Home returns to the first view, drawn the same way.
+  frames = await framesDrawn(widget);
+  await page.keyboard.press('Home');
+  expect((await nextFrame(widget, frames)).equals(before)).toBe(true);
+  // A drag turns it too.
+  const box = await canvas.boundingBox();
+  if (!box) throw new Error('the 3D canvas has no box');
+  frames = await framesDrawn(widget);
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 80, box.y + box.height / 2 + 20, { steps: 4 });
+  await page.mouse.up();
+  expect((await nextFrame(widget, frames)).equals(before)).toBe(false);
+  expect(errors).toEqual([]);
+});
+
+test('the 3D lobe follows g and the comparison lobe', async ({ page }) => {
+  const widget = await openSlide(page, { g: '0.6', compare: 'isotropic' });
+  await expect.poll(() => framesDrawn(widget)).toBeGreaterThan(0);
+  const forward = (await canvasStats(widget.locator('canvas.sb-hg-3d'))).png;
+  let frames = await framesDrawn(widget);
+  await controlValue(widget, 'g').fill('-0.3');
+  await controlValue(widget, 'g').press('Enter');
+  await controlValue(widget, 'g').blur();
+  const backward = await nextFrame(widget, frames);
+  expect(backward.equals(forward)).toBe(false);
+  await expect(widget.locator('canvas.sb-hg-3d')).toHaveAttribute('aria-label', /points back/);
+  frames = await framesDrawn(widget);
+  await widget.locator('select[name="compare"]').selectOption('rayleigh');
+  expect((await nextFrame(widget, frames)).equals(backward)).toBe(false);
+  await expect(widget.locator('.sb-hg-3d-figure .sb-hg-labels')).toContainText(
+    'wireframe: Rayleigh peanut',
+  );
+});
+
+test('the error-versus-time sweep plots the L1 error and its expectation, and can be cancelled', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openSlide(page, { g: '0.6', samples: '12' });
+  await expect(widget.locator('[data-readout="sweep"]')).toHaveText('run the sweep');
+  await widget.getByRole('button', { name: /Run sweep/ }).click();
+  await expect(widget).toHaveAttribute('data-sweeping', '');
+  await expect(widget.getByRole('button', { name: 'Cancel' })).toBeEnabled();
+  // N = 2¹⁰ … 2¹² have been measured for both series (6 of 22 steps): the curves are drawn.
+  await expect
+    .poll(async () => Number(await widget.locator('.sb-sweep progress').getAttribute('value')), {
+      timeout: 60_000,
+    })
+    .toBeGreaterThanOrEqual(6);
+  const sweepPlot = widget.locator('.sb-plot').nth(1);
+  await expect(sweepPlot).toContainText('measured, g = 0.6, GPU');
+  await expect(sweepPlot).toContainText('exact expectation');
+  await expect(sweepPlot).toHaveAttribute('aria-label', /L1 error of the histogram/);
+  await widget.getByRole('button', { name: 'Cancel' }).click();
+  await expect(widget.locator('.sb-sweep-status')).toHaveText('Sweep cancelled.');
+  await expect(widget).not.toHaveAttribute('data-sweeping');
+  await expect(widget.getByRole('button', { name: /Run sweep/ })).toBeEnabled();
+  await expect(widget.locator('[data-readout="sweep"]')).toHaveText('cancelled');
+  // The page stayed live: the widget still answers its controls.
+  const rendered = Number(await widget.getAttribute('data-rendered'));
+  await widget.locator('select[name="scale"]').selectOption('log');
+  await waitForRender(widget, rendered + 1);
+  expect(errors).toEqual([]);
+});
+
+test('?backend=cpu: the 3D lobe is the twin’s wireframe, and the whole sweep shows L1 ∝ N^(−½) against its exact expectation', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  await page.goto(`${CHAPTER}?backend=cpu#hg-lobe-1.g=0.6&hg-lobe-1.seed=1`);
+  const widget = page.locator('sb-hg-lobe').first();
+  await waitForRender(widget);
+  await expect.poll(() => framesDrawn(widget)).toBeGreaterThan(0);
+  const canvas = widget.locator('canvas.sb-hg-3d');
+  const stats = await canvasStats(canvas);
+  expect(stats.luminanceDeviation).toBeGreaterThan(10);
+  await expect(canvas).toHaveAttribute('aria-label', /CPU fallback/);
+  await expect(widget.locator('.sb-hg-3d-figure .sb-hg-labels')).toContainText('CPU wireframe');
+  await canvas.focus();
+  const frames = await framesDrawn(widget);
+  await page.keyboard.press('ArrowLeft');
+  expect((await nextFrame(widget, frames)).equals(stats.png)).toBe(false);
+
+  await widget.getByRole('button', { name: /Run sweep/ }).click();
+  await expect(widget.locator('.sb-sweep-status')).toContainText('Sweep done', {
+    timeout: 120_000,
+  });
+  await expect(widget.locator('.sb-sweep-status')).toContainText('CPU wall time');
+  // Seeds 1, 2, 3 at every N: deterministic. For g = 0.6 every bin has N·P ≥ 2.5 at
+  // N = 2¹⁰, so the exact expectation falls as N^(−½) to three digits, and the mean of
+  // three L1 errors (each a sum over 64 bins) stays within a few per cent of it.
+  const slope = await readout(widget, 'sweep');
+  const match = /p = (−?[\d.]+) \(exact expectation (−?[\d.]+)/.exec(slope);
+  expect(match, slope).not.toBeNull();
+  const measured = Number(match?.[1]?.replace('−', '-'));
+  const expected = Number(match?.[2]?.replace('−', '-'));
+  expect(Math.abs(expected + 0.5)).toBeLessThan(0.01);
+  expect(Math.abs(measured - expected)).toBeLessThan(0.05);
+  await expect(widget.locator('[data-readout="sweep"]')).toHaveClass(/sb-ok/);
+  const check = await readout(widget, 'sweep-check');
+  const ratio = Number(/ratio ([\d.]+)/.exec(check)?.[1]);
+  expect(Math.abs(ratio - 1)).toBeLessThan(0.1);
+  expect(errors).toEqual([]);
 });

@@ -1,8 +1,10 @@
 // <sb-rayleigh-sky> in Chromium with WebGPU (SwiftShader): it draws a non-blank sky,
 // its readouts show the physics of chapter 3 (a blue zenith at noon, a red sun at
 // sunset, a black sky without air), the step count trades accuracy against cost,
-// its state round-trips through the URL, presentation mode and the presets work from
-// the keyboard, and without WebGPU it falls back to the float64 twin and says so.
+// the sweep over N plots the error against the GPU time with fitted slopes and can
+// be cancelled while the page stays live, its state round-trips through the URL,
+// presentation mode and the presets work from the keyboard, and without WebGPU it
+// falls back to the float64 twin and says so.
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
@@ -105,6 +107,86 @@ test('more view-ray samples lower the error against the converged reference, and
   expect(after.png.equals(before.png)).toBe(false);
 });
 
+test('the sweep plots the relative RMS error against the panorama time, with the fitted slopes', async ({
+  page,
+}) => {
+  test.setTimeout(300_000);
+  const errors = trackErrors(page);
+  const widget = await openSky(page);
+  await expect(widget.locator('.sb-sweep-hint')).toContainText('relative RMS error');
+  expect(await readout(widget, 'slope')).toBe('run the sweep');
+  await widget.getByRole('button', { name: 'Run sweep N = 4 … 128' }).click();
+  await expect(widget.locator('.sb-sky-sweep-status')).toContainText('Sweep done', {
+    timeout: 240_000,
+  });
+  await expect(widget.locator('progress')).toHaveJSProperty('value', 11);
+  await expect(widget.locator('progress')).toHaveJSProperty('max', 11);
+  await expect(widget.locator('.sb-sky-sweep-status')).toContainText(
+    /time of one 640×480 panorama \((GPU timestamp query|wall time; this GPU has no timestamp queries)\), median of/,
+  );
+  // Twin at 60°: p = −1.94 over N = 16 … 128; the f32 kernel agrees to 3 digits there.
+  const p = parseDisplayed(await readout(widget, 'slope'));
+  expect(p).toBeGreaterThan(-2.3);
+  expect(p).toBeLessThan(-1.7);
+  expect(await readout(widget, 'slope')).toContain('midpoint rule: −2');
+  // The time slope depends on the machine: only its form is checked, never its value.
+  expect(await readout(widget, 'time-slope')).toMatch(/^q = -?[\d.]+(×10[⁻⁰-⁹]+)?, a = -?[\d.]+/);
+  await expect(widget.locator('.sb-plot .u-over')).toBeVisible();
+  await expect(widget.locator('.sb-plot .u-legend')).toContainText(
+    'relative RMS error, sun at 60°',
+  );
+  await expect(widget.locator('.sb-plot')).toHaveAttribute(
+    'aria-label',
+    'Log–log plot of relative RMS error against time per render',
+  );
+  const plot = await canvasStats(widget.locator('.sb-plot canvas'));
+  expect(plot.distinctColours).toBeGreaterThan(3);
+  // Afterwards the picture and the cost line are back at the chosen N = 32.
+  await expect(widget.locator('.sb-cost')).toContainText('N = 32 view samples × M = 8');
+  await expect(widget.locator('.sb-cost')).toContainText('median of');
+  expect(errors).toEqual([]);
+});
+
+test('a running sweep can be cancelled, and the page stays live while it runs', async ({
+  page,
+}) => {
+  test.setTimeout(180_000);
+  const errors = trackErrors(page);
+  const widget = await openSky(page, { 'sun-elevation': '20' });
+  const run = widget.getByRole('button', { name: /Run sweep/ });
+  await run.click();
+  await expect(widget).toHaveAttribute('data-sweeping', '');
+  await expect
+    .poll(async () =>
+      Number(await widget.locator('progress').evaluate((e) => (e as HTMLProgressElement).value)),
+    )
+    .toBeGreaterThanOrEqual(2);
+  // The page answers input mid-sweep: a control changes, the URL follows, and the
+  // widget redraws, all while the sweep is still running.
+  const rendered = Number(await widget.getAttribute('data-rendered'));
+  const exposure = controlValue(widget, 'exposure');
+  await exposure.fill('1');
+  await exposure.press('Enter');
+  await expect.poll(() => page.url()).toContain('exposure=1');
+  await waitForRender(widget, rendered + 1);
+  await expect(widget).toHaveAttribute('data-sweeping', '');
+  await widget.getByRole('button', { name: 'Cancel' }).click();
+  await expect(widget.locator('.sb-sky-sweep-status')).toHaveText('Sweep cancelled.');
+  await expect(widget).not.toHaveAttribute('data-sweeping');
+  await expect(run).toBeEnabled();
+  const stoppedAt = await widget
+    .locator('progress')
+    .evaluate((e) => (e as HTMLProgressElement).value);
+  expect(stoppedAt).toBeLessThan(11);
+  // The plot kept the points measured before the cancel.
+  await expect(widget.locator('.sb-plot .u-over')).toBeVisible();
+  // Once the frame in flight is done, the slopes say the sweep was cancelled.
+  await expect
+    .poll(() => readout(widget, 'slope'), { timeout: 60_000 })
+    .toBe('cancelled; run the sweep again');
+  expect(errors).toEqual([]);
+});
+
 test('a deep link restores the state exactly', async ({ page }) => {
   const widget = await openSky(page, {
     'sun-elevation': '2',
@@ -164,6 +246,24 @@ test('?backend=cpu: the float64 twin draws the sky and computes the same numbers
   expect(Math.abs(parseDisplayed(await readout(widget, 'zenith-ratio')) - gpuZenith)).toBeLessThan(
     2e-3,
   );
+  expect(errors).toEqual([]);
+});
+
+test('?backend=cpu: the sweep times the float64 probes instead of a panorama, and says so', async ({
+  page,
+}) => {
+  test.setTimeout(120_000);
+  const errors = trackErrors(page);
+  const widget = await openSky(page, {}, '?backend=cpu');
+  await widget.getByRole('button', { name: /Run sweep/ }).click();
+  await expect(widget.locator('.sb-sky-sweep-status')).toContainText('Sweep done', {
+    timeout: 90_000,
+  });
+  await expect(widget.locator('.sb-sky-sweep-status')).toContainText(
+    'CPU fallback: time of the three float64 probes (CPU wall time), no panorama',
+  );
+  // Twin at 60°: p = −1.944 exactly (float64 against the same cached reference).
+  expect(parseDisplayed(await readout(widget, 'slope'))).toBeCloseTo(-1.94, 2);
   expect(errors).toEqual([]);
 });
 

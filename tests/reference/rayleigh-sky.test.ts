@@ -1,7 +1,9 @@
 // The rayleigh-sky widget's float64 model (src/widgets/rayleigh-sky/model.ts) held
 // to physical facts: β ∝ λ⁻⁴ in the Bruneton & Neyret 2008 coefficients, the
 // geometry helpers against exact cases, the midpoint rule's O(h²) convergence, and
-// the colours of the sky at noon and of the sun at sunset.
+// the colours of the sky at noon and of the sun at sunset; and the sweep's pure
+// logic: the error measure, the slope fits, the median, the timed pass count, and
+// the reference cache (one computation per sun elevation, shared by every frame).
 import { describe, expect, it } from 'vitest';
 import {
   ATMOSPHERE_TOP,
@@ -9,16 +11,29 @@ import {
   EARTH_RADIUS,
   SCALE_HEIGHT,
   WAVELENGTHS_NM,
+  FIT_FROM_STEPS,
+  MAX_TIMED_PASSES,
+  REFERENCE_STEPS,
+  SWEEP_STEPS,
+  TIMED_SPAN_MS,
   altitudeAlong,
   computeProbes,
   distanceToTop,
+  fitSweep,
+  hasCachedReference,
   inputsFrom,
+  median,
+  nextPassCount,
+  probeError,
   probesFor,
   referenceProbes,
+  referenceProbesAsync,
   skyRadiance,
   sunDensityIntegral,
   sunStepsFor,
   sunTransmittance,
+  type Rgb,
+  type SkyProbes,
 } from '../../src/widgets/rayleigh-sky/model.ts';
 
 const values = (elevation: number, scattering = 'on', steps = 32) => ({
@@ -139,5 +154,138 @@ describe('colours (physics.md §2.6: σs ∝ λ⁻⁴)', () => {
     const scale = BETA_RAYLEIGH[0] * ((3 / (16 * Math.PI)) * 2) * SCALE_HEIGHT;
     expect(l / scale).toBeLessThan(Math.exp(-bH));
     expect(l / scale).toBeGreaterThan(Math.exp(-2 * bH));
+  });
+});
+
+describe('the sweep: error measure, fits and timing helpers', () => {
+  const probes = (radiance: Rgb[]): SkyProbes => ({ radiance, sunTransmittance: [1, 1, 1] });
+  const reference = probes([
+    [1, 2, 4],
+    [0.5, 1, 2],
+    [0.25, 0.5, 1],
+  ]);
+
+  it('probeError is the relative RMS over probes and channels: δ when every value is off by a factor 1 + δ', () => {
+    expect(probeError(reference, reference)).toBe(0);
+    const scaled = probes(reference.radiance.map((rgb) => rgb.map((l) => l * 1.01) as Rgb));
+    expect(probeError(scaled, reference)).toBeCloseTo(0.01, 14);
+    // One of nine pairs off by 3%: √(0.03²/9) = 0.01.
+    const one = probes(reference.radiance.map((rgb) => [...rgb] as Rgb));
+    one.radiance[1]![2] = 2 * 1.03;
+    expect(probeError(one, reference)).toBeCloseTo(0.01, 14);
+  });
+
+  it('probeError skips reference values of 0 and is null when all are 0 (scattering off)', () => {
+    const dark = probes([
+      [0, 0, 0],
+      [0, 0, 0],
+      [0, 0, 0],
+    ]);
+    expect(probeError(dark, dark)).toBeNull();
+    const partly = probes([
+      [0, 2, 4],
+      [0.5, 1, 2],
+      [0.25, 0.5, 1],
+    ]);
+    const estimate = probes([
+      [7, 2, 4],
+      [0.5, 1, 2],
+      [0.25, 0.5, 1.08],
+    ]);
+    // The 7 against a reference of 0 is left out: √(0.08²/8).
+    expect(probeError(estimate, partly)).toBeCloseTo(0.08 / Math.sqrt(8), 14);
+  });
+
+  it('fitSweep recovers p = −2, a = 2, q = −1 from error ∝ N⁻², time ∝ N², and ignores N < 16', () => {
+    const points = SWEEP_STEPS.map((n) => ({
+      n,
+      // Below N = 16 a plateau, as the sun ray's fixed M = 4 gives in the widget.
+      rmse: n < FIT_FROM_STEPS ? 0.03 : 5 / n ** 2,
+      milliseconds: n < FIT_FROM_STEPS ? 1 : 0.01 * n ** 2,
+    }));
+    const fit = fitSweep(points);
+    expect(fit.count).toBe(SWEEP_STEPS.filter((n) => n >= FIT_FROM_STEPS).length);
+    expect(fit.order).toBeCloseTo(-2, 12);
+    expect(fit.timeExponent).toBeCloseTo(2, 12);
+    expect(fit.timeOrder).toBeCloseTo(-1, 12);
+  });
+
+  it('fitSweep gives no slopes when every error is 0 (nothing to fit on a log scale)', () => {
+    const fit = fitSweep(SWEEP_STEPS.map((n) => ({ n, rmse: 0, milliseconds: n })));
+    expect(fit.order).toBeNull();
+    expect(fit.timeOrder).toBeNull();
+  });
+
+  for (const elevation of [60, 20, 2]) {
+    it(`the twin's sweep at ${elevation}°: p within 0.2 of −2 over N ≥ 16 (the midpoint rule on a smooth integrand)`, () => {
+      const inputs = inputsFrom(values(elevation));
+      const exact = referenceProbes(inputs);
+      const points = SWEEP_STEPS.map((n) => ({
+        n,
+        rmse: probeError(computeProbes(inputs, n, sunStepsFor(n)), exact)!,
+        milliseconds: n * sunStepsFor(n),
+      }));
+      const { order, timeOrder } = fitSweep(points);
+      expect(order).toBeGreaterThan(-2.2);
+      expect(order).toBeLessThan(-1.8);
+      // With the work N·M = N²/4 as the time, the error falls as time⁻¹.
+      expect(timeOrder).toBeGreaterThan(-1.1);
+      expect(timeOrder).toBeLessThan(-0.9);
+    });
+  }
+
+  it('with the sun 2° below the horizon the Earth shadow cuts the integrand and the fitted order drops', () => {
+    const inputs = inputsFrom(values(-2));
+    const exact = referenceProbes(inputs);
+    const points = SWEEP_STEPS.map((n) => ({
+      n,
+      rmse: probeError(computeProbes(inputs, n, sunStepsFor(n)), exact)!,
+      milliseconds: n,
+    }));
+    expect(fitSweep(points).order).toBeGreaterThan(-1.6);
+  });
+
+  it('median: the middle value, or the mean of the two middle ones; an empty list throws', () => {
+    expect(median([5, 1, 3])).toBe(3);
+    expect(median([4, 1, 3, 2])).toBe(2.5);
+    expect(median([7])).toBe(7);
+    expect(() => median([])).toThrow();
+  });
+
+  it('nextPassCount keeps the count once the span reaches the target, and raises it (to at most the cap) below it', () => {
+    expect(nextPassCount(1, TIMED_SPAN_MS)).toBe(1);
+    expect(nextPassCount(3, 450)).toBe(3);
+    // A span quantized to 0: eight times the passes.
+    expect(nextPassCount(1, 0)).toBe(8);
+    // 0.1 ms for one pass: ⌈1.25 × 2 / 0.1⌉ = 25 passes for a 2.5 ms span.
+    expect(nextPassCount(1, 0.1)).toBe(25);
+    expect(nextPassCount(8, 0)).toBe(MAX_TIMED_PASSES);
+    expect(nextPassCount(MAX_TIMED_PASSES, 0)).toBe(MAX_TIMED_PASSES);
+    // Always at least one more pass when under the target (no endless recalibration).
+    expect(nextPassCount(4, 1.99)).toBeGreaterThan(4);
+  });
+});
+
+describe('the converged reference is computed once per (sun elevation, scattering) and reused', () => {
+  it('N, M and the exposure do not change the cache entry: every frame gets the same object', () => {
+    const a = referenceProbes(inputsFrom({ ...values(41), steps: 8, exposure: 2 }));
+    const b = referenceProbes(inputsFrom({ ...values(41), steps: 128, exposure: -1 }));
+    expect(b).toBe(a);
+    expect(referenceProbes(inputsFrom(values(41, 'off')))).not.toBe(a);
+    expect(referenceProbes(inputsFrom(values(42)))).not.toBe(a);
+  });
+
+  it('the asynchronous reference (the widget yields between probes) fills the same cache, once, with the same numbers', async () => {
+    const inputs = inputsFrom(values(37.5));
+    expect(hasCachedReference(inputs)).toBe(false);
+    const [first, second] = await Promise.all([
+      referenceProbesAsync(inputs),
+      referenceProbesAsync({ ...inputs, steps: 64 }),
+    ]);
+    expect(second).toBe(first);
+    expect(hasCachedReference(inputs)).toBe(true);
+    expect(referenceProbes(inputs)).toBe(first);
+    expect(await referenceProbesAsync(inputs)).toBe(first);
+    expect(first).toEqual(computeProbes(inputs, REFERENCE_STEPS, REFERENCE_STEPS));
   });
 });

@@ -2,11 +2,15 @@
 // through Dawn exactly as the widget dispatches it, against the float64 twin in
 // src/widgets/delta-tracking/model.ts (same rays, same estimators, same PCG
 // streams); and the statistics chapter 6 states (physics.md §3, §4.1, §4.5),
-// checked on the GPU output and on the twin.
+// checked on the GPU output and on the twin: delta tracking's variance T(1 − T),
+// the RMSE of every unbiased estimator falling as spp^(−½) while the biased one
+// levels off (what the comparison's sweep shows), and the clamp to SPP_MAX that
+// the comparison's equal-time allocation relies on.
 import { afterAll, describe, expect, it } from 'vitest';
 import { linkLibraryKernel } from '../../src/gpu/link.ts';
 import { renderImageGpu } from '../../src/widgets/delta-tracking/gpuBackend.ts';
 import {
+  SPP_MAX,
   exactImage,
   imageStatistics,
   inputsFrom,
@@ -151,4 +155,66 @@ describe('statistics of the estimators on the widget image (GPU output and twin)
           expect(Math.abs(bias)).toBeLessThan(bound);
         });
   }
+});
+
+/**
+ * Mean squared error of the pixel means against the exact T, with its standard
+ * error from the spread of the per-pixel squared errors (the pixels are
+ * independent: each has its own PCG stream).
+ */
+function mseWithError(image: TrackingImage, exact: Float64Array): { mse: number; se: number } {
+  const pixels = exact.length;
+  let sum = 0;
+  let sumSquares = 0;
+  for (let i = 0; i < pixels; i++) {
+    const e2 = (image.mean[i]! - exact[i]!) ** 2;
+    sum += e2;
+    sumSquares += e2 * e2;
+  }
+  const mse = sum / pixels;
+  const variance = Math.max(sumSquares / pixels - mse * mse, 0) * (pixels / (pixels - 1));
+  return { mse, se: Math.sqrt(variance / pixels) };
+}
+
+describe('convergence with spp on the GPU (the comparison sweep, physics.md §3–4)', () => {
+  const LOW = 4;
+  const HIGH = 64;
+  const exact = exactImage(WIDTH, HEIGHT);
+
+  for (const estimator of ['delta', 'ratio', 'residual', 'urm'])
+    it(`${estimator}: RMSE ∝ spp^p with p = −½ within 5 SE between spp ${LOW} and ${HIGH}`, async () => {
+      // Different seeds, so the two images are independent.
+      const low = mseWithError(await gpuImage(inputs(estimator, 'tight', LOW, 31)), exact);
+      const high = mseWithError(await gpuImage(inputs(estimator, 'tight', HIGH, 32)), exact);
+      // p = ½ ln(MSE_high/MSE_low)/ln(HIGH/LOW); its SE by the delta method.
+      const ln = Math.log(HIGH / LOW);
+      const p = (0.5 * Math.log(high.mse / low.mse)) / ln;
+      const se = (0.5 * Math.hypot(low.se / low.mse, high.se / high.mse)) / ln;
+      expect(Math.abs(p + 0.5)).toBeLessThan(5 * se);
+      expect(se).toBeLessThan(0.05); // the bound is tight enough to mean something
+    });
+
+  it(`biased exp(−τ̂): the MSE at spp ${HIGH} stays far above 1/${HIGH / LOW} of the MSE at spp ${LOW} (the plateau)`, async () => {
+    const low = mseWithError(await gpuImage(inputs('biased', 'tight', LOW, 33)), exact);
+    const high = mseWithError(await gpuImage(inputs('biased', 'tight', HIGH, 34)), exact);
+    const unbiasedWouldBe = low.mse / (HIGH / LOW);
+    const se = Math.hypot(high.se, low.se / (HIGH / LOW));
+    expect(high.mse - unbiasedWouldBe).toBeGreaterThan(5 * se);
+  });
+});
+
+describe(`spp above the kernel's cap SPP_MAX = ${SPP_MAX} (the equal-time row clamps to it)`, () => {
+  it('the GPU and the twin both average exactly SPP_MAX estimates', async () => {
+    const input = inputs('delta', 'tight', 2 * SPP_MAX, 41);
+    const gpu = await gpuImage(input, 16, 10);
+    const cpu = renderImageCpu(16, 10, input);
+    expect(gpu.spp).toBe(SPP_MAX);
+    expect(cpu.spp).toBe(SPP_MAX);
+    // Delta tracking's sums of 0/1 estimates are exact in f32: the means agree
+    // wherever the walks replay (ties aside, as above), and the lookups match.
+    let agree = 0;
+    for (let i = 0; i < 160; i++) if (Math.abs(gpu.mean[i]! - cpu.mean[i]!) <= 1e-6) agree++;
+    expect(agree / 160).toBeGreaterThanOrEqual(MIN_AGREEMENT);
+    expect(Math.abs(gpu.lookups - cpu.lookups)).toBeLessThanOrEqual(0.05 * cpu.lookups);
+  });
 });

@@ -2,11 +2,25 @@
 // so every widget's plots look alike and follow the page's theme.
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
+import { formatNumber } from './format.ts';
+
+/**
+ * Tick label of a logarithmic axis: decades only (1, 0.1, 0.01, 1×10⁻³, …), so
+ * that small values are not rounded to "0" and the labels never crowd.
+ */
+export function logTickLabel(value: number): string {
+  if (!(value > 0)) return '';
+  const exponent = Math.round(Math.log10(value));
+  if (Math.abs(Math.log10(value) - exponent) > 1e-6) return '';
+  return formatNumber(10 ** exponent, 1);
+}
 
 export interface PlotSeries {
   label: string;
   color: string;
   dash?: number[];
+  /** Draw across missing values (NaN, or ≤ 0 on a log axis) instead of leaving a gap. */
+  spanGaps?: boolean;
   values: ArrayLike<number>;
 }
 
@@ -104,10 +118,24 @@ export class LinePlot {
             ...(this.options.yLog ? { distr: 3, log: 10 } : {}),
           },
         },
-        axes: [axis(this.options.xLabel), axis(this.options.yLabel)],
+        axes: [
+          axis(this.options.xLabel),
+          {
+            ...axis(this.options.yLabel),
+            ...(this.options.yLog
+              ? { values: (_: uPlot, splits: number[]) => splits.map(logTickLabel) }
+              : {}),
+          },
+        ],
         series: [
           { label: this.options.xLabel },
-          ...series.map((s) => ({ label: s.label, stroke: s.color, width: 2, dash: s.dash ?? [] })),
+          ...series.map((s) => ({
+            label: s.label,
+            stroke: s.color,
+            width: 2,
+            dash: s.dash ?? [],
+            ...(s.spanGaps ? { spanGaps: true } : {}),
+          })),
         ],
         cursor: { drag: { x: false, y: false } },
       },

@@ -61,6 +61,10 @@ export interface TrackingInputs {
   majorant: string;
   majorantScale: number;
   seed: number;
+  /** One estimator in detail, or all five compared at equal samples and equal time. */
+  view: 'single' | 'compare';
+  /** What the comparison's ten images show. */
+  grid: 'estimate' | 'variance';
 }
 
 export function inputsFrom(values: ParameterValues): TrackingInputs {
@@ -73,7 +77,14 @@ export function inputsFrom(values: ParameterValues): TrackingInputs {
     majorant,
     majorantScale: MAJORANT_SCALES[majorant] ?? 1,
     seed: Math.round(Number(values['seed'])),
+    view: values['view'] === 'compare' ? 'compare' : 'single',
+    grid: values['grid'] === 'variance' ? 'variance' : 'estimate',
   };
+}
+
+/** The same inputs with another estimator (the comparison renders all five). */
+export function withEstimator(inputs: TrackingInputs, estimator: string): TrackingInputs {
+  return { ...inputs, estimator, code: ESTIMATORS[estimator] ?? 1 };
 }
 
 /**
@@ -143,24 +154,40 @@ export interface TrackingImage {
   capped: number;
 }
 
-/**
- * The float64 twin of the kernel renderImage: the same rays, the same estimators
- * and the same PCG stream per pixel (rngSeed(index, seed)), consumed by spp
- * estimates in turn.
- */
-export function renderImageCpu(
+/** A TrackingImage of zeros with float64 planes, for renderRowsCpu to fill. */
+export function emptyImageCpu(
   width: number,
   height: number,
-  inputs: TrackingInputs,
-  requestedSpp = inputs.spp,
-): TrackingImage {
+  requestedSpp: number,
+): TrackingImage & { mean: Float64Array; meanSquare: Float64Array } {
   const spp = Math.min(Math.max(Math.round(requestedSpp), 1), SPP_MAX);
   const pixels = width * height;
-  const mean = new Float64Array(pixels);
-  const meanSquare = new Float64Array(pixels);
-  let lookups = 0;
-  let capped = 0;
-  for (let row = 0; row < height; row++) {
+  return {
+    width,
+    height,
+    spp,
+    mean: new Float64Array(pixels),
+    meanSquare: new Float64Array(pixels),
+    lookups: 0,
+    capped: 0,
+  };
+}
+
+/**
+ * Rows rowStart … rowEnd − 1 of the float64 twin of the kernel renderImage, into
+ * image: the same rays, the same estimators and the same PCG stream per pixel
+ * (rngSeed(index, seed)), consumed by image.spp estimates in turn. Every pixel has
+ * its own stream, so an image rendered in slices (the CPU fallback yields to the
+ * page between them) is identical to one rendered at once.
+ */
+export function renderRowsCpu(
+  image: TrackingImage & { mean: Float64Array; meanSquare: Float64Array },
+  inputs: TrackingInputs,
+  rowStart: number,
+  rowEnd: number,
+): void {
+  const { width, height, spp } = image;
+  for (let row = rowStart; row < Math.min(rowEnd, height); row++) {
     for (let column = 0; column < width; column++) {
       const index = row * width + column;
       const medium = pixelMedium((column + 0.5) / width, (row + 0.5) / height);
@@ -171,14 +198,25 @@ export function renderImageCpu(
         const result = estimateOnce(medium, inputs, state);
         sum += result.estimate;
         sumSquares += result.estimate ** 2;
-        lookups += result.lookups;
-        capped += result.capped;
+        image.lookups += result.lookups;
+        image.capped += result.capped;
       }
-      mean[index] = sum / spp;
-      meanSquare[index] = sumSquares / spp;
+      image.mean[index] = sum / spp;
+      image.meanSquare[index] = sumSquares / spp;
     }
   }
-  return { width, height, spp, mean, meanSquare, lookups, capped };
+}
+
+/** The whole image at once on the CPU (the kernel tests' twin; spp clamped as in the kernel). */
+export function renderImageCpu(
+  width: number,
+  height: number,
+  inputs: TrackingInputs,
+  requestedSpp = inputs.spp,
+): TrackingImage {
+  const image = emptyImageCpu(width, height, requestedSpp);
+  renderRowsCpu(image, inputs, 0, height);
+  return image;
 }
 
 const exactCache = new Map<string, Float64Array>();

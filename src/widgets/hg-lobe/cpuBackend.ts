@@ -20,11 +20,36 @@ import {
  */
 export function sampleHistogramCpu(g: number, sampleCount: number, seed: number): HgHistogram {
   const start = performance.now();
-  const bins = new Uint32Array(BIN_COUNT);
+  const histogram = emptyHistogram(sampleCount);
+  accumulateSamples(histogram, g, 0, sampleCount, seed);
+  histogram.milliseconds = performance.now() - start;
+  return histogram;
+}
+
+function emptyHistogram(sampleCount: number): HgHistogram {
+  return {
+    bins: new Uint32Array(BIN_COUNT),
+    sampleCount,
+    sumMu: 0,
+    sumMuSquared: 0,
+    milliseconds: 0,
+    timing: 'cpu',
+  };
+}
+
+/** Adds samples first … end − 1 of the kernel's streams to a histogram. */
+function accumulateSamples(
+  histogram: HgHistogram,
+  g: number,
+  first: number,
+  end: number,
+  seed: number,
+): void {
+  const { bins } = histogram;
   let sumMu = 0;
   let sumMuSquared = 0;
   const state = { value: 0 };
-  for (let i = 0; i < sampleCount; i++) {
+  for (let i = first; i < end; i++) {
     state.value = rngSeed(i, seed);
     const xi = rngNextFloat(state);
     const { mu, onePlusMu } = hgSampleMu(g, xi, 1 - xi);
@@ -32,14 +57,29 @@ export function sampleHistogramCpu(g: number, sampleCount: number, seed: number)
     sumMu += mu;
     sumMuSquared += mu * mu;
   }
-  return {
-    bins,
-    sampleCount,
-    sumMu,
-    sumMuSquared,
-    milliseconds: performance.now() - start,
-    timing: 'cpu',
-  };
+  histogram.sumMu += sumMu;
+  histogram.sumMuSquared += sumMuSquared;
+}
+
+/**
+ * The same histogram as sampleHistogramCpu, computed in chunks of `chunk` samples
+ * with a yield to the page after each, so that a sweep to 2^20 samples on the CPU
+ * never freezes the page. The time counts the sampling only, not the yields.
+ */
+export async function sampleHistogramCpuInChunks(
+  g: number,
+  sampleCount: number,
+  seed: number,
+  chunk = 1 << 16,
+): Promise<HgHistogram> {
+  const histogram = emptyHistogram(sampleCount);
+  for (let first = 0; first < sampleCount; first += chunk) {
+    const start = performance.now();
+    accumulateSamples(histogram, g, first, Math.min(first + chunk, sampleCount), seed);
+    histogram.milliseconds += performance.now() - start;
+    await new Promise((resolve) => setTimeout(resolve, 0));
+  }
+  return histogram;
 }
 
 interface LobeShape {

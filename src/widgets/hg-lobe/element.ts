@@ -1,27 +1,37 @@
 // <sb-hg-lobe>: the Henyey–Greenstein phase function (chapter 3). Draws the lobe
-// as a polar plot on the GPU, samples 2^n scattering cosines with the library's
-// HG sampler in a compute pass, and shows the histogram against the closed form
-// with a chi-square test, the sample mean cosine against g, the normalisation of
-// the float64 twin, and the cost of sampling on the GPU next to the CPU twin.
+// as a polar plot and as a 3D surface on the GPU, samples 2^n scattering cosines
+// with the library's HG sampler in a compute pass, and shows the histogram against
+// the closed form with a chi-square test, the sample mean cosine against g, the
+// normalisation of the float64 twin, and the cost of sampling on the GPU next to
+// the CPU twin (averaged over frames); a cancellable sweep over N = 2¹⁰ … 2²⁰ plots
+// the histogram's L1 error against the sampling time, next to its exact expectation.
 import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
 import { hgEval } from '../../reference/phase.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import { timingLabel } from '../base/imageKernel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { LinePlot, type PlotSeries } from '../base/plot.ts';
+import { SweepControls, logLogSlope, type SweepPoint } from '../base/sweep.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { HG_LOBE } from './schema.ts';
-import { drawLobeCpu, sampleHistogramCpu } from './cpuBackend.ts';
+import { drawLobeCpu, sampleHistogramCpu, sampleHistogramCpuInChunks } from './cpuBackend.ts';
 import { HgLobeGpu } from './gpuBackend.ts';
+import { LobeView } from './lobeView.ts';
 import {
   ALPHA,
   BIN_COUNT,
   CPU_TIMING_CAP,
+  SWEEP_EXPONENTS,
+  SWEEP_REPETITIONS,
   binEdge,
   chiSquareTest,
   comparePhase,
+  expectedHistogramL1,
   hgBinProbabilities,
+  histogramL1,
   inputsFrom,
   meanCosine,
+  median,
   polarLayout,
   sphereIntegral,
   type HgHistogram,
@@ -39,7 +49,12 @@ const READOUT_ROWS = [
   ['mean-cosine', 'Sample mean cosine ± SE'],
   ['chi-square', 'χ² of 64 bins vs closed form'],
   ['replay', 'Histogram vs float64 replay'],
+  ['sweep', 'Sweep: L1 error ∝ N^p'],
+  ['sweep-check', 'Sweep: L1 at N = 2²⁰ vs expected'],
 ] as const;
+
+/** Frames whose sampling time the cost line averages (per N and backend). */
+const TIMING_FRAMES = 8;
 
 const COMPARE_NAMES = { none: '', isotropic: 'isotropic', rayleigh: 'Rayleigh' } as const;
 
@@ -55,6 +70,11 @@ export class HgLobeElement extends WidgetElement {
 
   private canvas: HTMLCanvasElement | null = null;
   private labels: HTMLElement | null = null;
+  private view: LobeView | null = null;
+  private sweep: SweepControls | null = null;
+  private sweepRuns = 0;
+  /** Recent sampling times in ms, keyed by backend, timing kind and N. */
+  private readonly recentTimes = new Map<string, number[]>();
   private plotArea: HTMLElement | null = null;
   private plot: LinePlot | null = null;
   private plotScale: RadiusScale | null = null;
@@ -69,13 +89,19 @@ export class HgLobeElement extends WidgetElement {
 
   protected buildStage(stage: HTMLElement): void {
     const figure = document.createElement('div');
-    figure.className = 'sb-hg-figure';
+    figure.className = 'sb-hg-figure sb-hg-polar-figure';
     this.canvas = this.createCanvas();
     this.labels = document.createElement('div');
     this.labels.className = 'sb-hg-labels';
     this.labels.setAttribute('aria-hidden', 'true');
     figure.append(this.canvas, this.labels);
     stage.appendChild(figure);
+    this.view = new LobeView((error) =>
+      this.fallBackToCpu(
+        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
+      ),
+    );
+    stage.appendChild(this.view.figure);
     this.plotArea = document.createElement('div');
     this.plotArea.className = 'sb-plot';
     this.plotArea.setAttribute('role', 'img');
@@ -84,11 +110,27 @@ export class HgLobeElement extends WidgetElement {
       'Histogram of the sampled scattering cosines against the analytic density 2π·p(μ)',
     );
     stage.appendChild(this.plotArea);
+    this.sweep = new SweepControls(
+      stage,
+      this,
+      {
+        name: 'N',
+        buttonText: 'Run sweep N = 2¹⁰ … 2²⁰',
+        hint:
+          'Run the sweep to plot the histogram’s error against the time of one sampling pass, for N = 2¹⁰ … 2²⁰ ' +
+          `(time: median of ${SWEEP_REPETITIONS} passes; error: L1 distance Σ|Oₖ/N − Pₖ| to the analytic bin probabilities, ` +
+          'mean of the same passes). A Monte Carlo estimate falls as N^(−½); the dashed curve is its exact expectation.',
+        color: '#d9822b',
+        points: SWEEP_EXPONENTS.map((n) => 2 ** n),
+        errorName: 'L1 error of the histogram',
+      },
+      () => void this.runSweep(),
+    );
   }
 
   private createCanvas(): HTMLCanvasElement {
     const canvas = document.createElement('canvas');
-    canvas.className = 'sb-canvas';
+    canvas.className = 'sb-canvas sb-hg-polar';
     canvas.setAttribute('role', 'img');
     canvas.width = 960;
     canvas.height = 480;
@@ -97,6 +139,8 @@ export class HgLobeElement extends WidgetElement {
 
   protected buildReadout(readout: HTMLElement): void {
     this.readouts = new ReadoutList(readout, READOUT_ROWS);
+    this.readouts.set('sweep', 'run the sweep');
+    this.readouts.set('sweep-check', 'run the sweep');
   }
 
   /** After a device loss: a fresh canvas (a WebGPU canvas cannot become 2D) and the CPU path. */
@@ -107,6 +151,8 @@ export class HgLobeElement extends WidgetElement {
       this.canvas = fresh;
     }
     this.backends.useCpu(reason);
+    this.view?.useCpu();
+    this.sweep?.cancel('stopped: the GPU path was lost');
     this.scheduleRender();
   }
 
@@ -128,6 +174,7 @@ export class HgLobeElement extends WidgetElement {
         return;
       }
       this.clearNotice('backend');
+      this.view?.useGpu(backend.gpu);
       // The twin replays the same streams, capped so that dragging a slider stays smooth.
       replay = sampleHistogramCpu(
         inputs.g,
@@ -136,14 +183,16 @@ export class HgLobeElement extends WidgetElement {
       );
     } else {
       drawLobeCpu(this.canvas, inputs);
+      this.view?.useCpu();
       histogram = sampleHistogramCpu(inputs.g, inputs.sampleCount, inputs.seed);
       replay = histogram;
       this.showNotice(
         'backend',
         'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same samples (the same PCG streams), the picture drawn at half resolution.`,
+        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same samples (the same PCG streams), the polar picture at half resolution and the 3D lobe as a wireframe.`,
       );
     }
+    this.view?.show({ inputs, logFloor: layout.logFloor });
     this.drawLabels(inputs, layout);
     this.showResult(inputs, histogram, replay, backend);
     this.updatePlot(inputs, histogram, backend);
@@ -253,12 +302,8 @@ export class HgLobeElement extends WidgetElement {
 
     const n = histogram.sampleCount;
     const nText = `2${superscript(inputs.samplesExponent)} = ${n} samples`;
-    const how =
-      histogram.timing === 'gpu-timestamp'
-        ? 'GPU timestamp query'
-        : histogram.timing === 'gpu-wall'
-          ? 'wall time; this GPU has no timestamp queries'
-          : 'CPU wall time';
+    const how = timingLabel(histogram.timing);
+    this.recordFrameCost(histogram.milliseconds, how);
     let twin: string;
     if (replay.sampleCount === n) {
       twin = `float64 twin on the CPU: ${formatMilliseconds(replay.milliseconds)} for the same ${n}`;
@@ -268,11 +313,16 @@ export class HgLobeElement extends WidgetElement {
         `float64 twin on the CPU: ≈ ${formatMilliseconds(replay.milliseconds * factor)} for ${n}, ` +
         `scaled ×${factor} from ${formatMilliseconds(replay.milliseconds)} measured on ${replay.sampleCount}`;
     }
+    const { mean: averageMs, frames } = this.averageTime(histogram);
+    const time =
+      frames > 1
+        ? `${formatMilliseconds(averageMs)} (${how}, mean of the last ${frames} frames at this N)`
+        : `${formatMilliseconds(averageMs)} (${how}, one frame so far)`;
     if (this.readouts) {
       this.readouts.cost.textContent =
         backend.kind === 'gpu'
-          ? `WebGPU (${backend.gpu.adapterDescription}): ${nText} in ${formatMilliseconds(histogram.milliseconds)} (${how}); ${twin}.`
-          : `CPU fallback: ${nText} in ${formatMilliseconds(histogram.milliseconds)} (${how}, float64 twin).`;
+          ? `WebGPU (${backend.gpu.adapterDescription}): ${nText} in ${time}; ${twin}.`
+          : `CPU fallback: ${nText} in ${time}, float64 twin.`;
     }
     if (this.canvas) {
       const other = COMPARE_NAMES[inputs.compare];
@@ -282,6 +332,126 @@ export class HgLobeElement extends WidgetElement {
           `the beam enters from the left; the lobe reaches ${formatNumber(hgEval(g, 1), 3)} per steradian forward ` +
           `and ${formatNumber(hgEval(g, -1), 3)} backward${other ? `, outlined against the ${other} phase function` : ''}.`,
       );
+    }
+  }
+
+  /** The mean of the last TIMING_FRAMES sampling times with this N and timing kind, this frame included. */
+  private averageTime(histogram: HgHistogram): { mean: number; frames: number } {
+    const key = `${histogram.timing}:${histogram.sampleCount}`;
+    const times = [...(this.recentTimes.get(key) ?? []), histogram.milliseconds].slice(
+      -TIMING_FRAMES,
+    );
+    this.recentTimes.set(key, times);
+    return { mean: times.reduce((a, b) => a + b, 0) / times.length, frames: times.length };
+  }
+
+  /**
+   * Error against time for N = 2¹⁰ … 2²⁰ (the inputs of the moment the sweep starts):
+   * per N, SWEEP_REPETITIONS sampling passes with seeds s, s + 1, …; x is the
+   * median time of a pass (GPU timestamps where the device has them, wall time
+   * otherwise; the CPU twin's time on the fallback), y the mean L1 distance of the
+   * histograms to the analytic bin probabilities (physics.md §2.4). The second,
+   * dashed series is the exact expected L1 at the same time, from the binomial law
+   * of each bin count, so the measured curve is judged against an analytic value.
+   */
+  private async runSweep(): Promise<void> {
+    const run = ++this.sweepRuns;
+    let ended = false;
+    await this.sweep!.runSeries(async () => {
+      const inputs = inputsFrom(this.values);
+      const backend = await this.backends.choose();
+      const layout = polarLayout(inputs, 960, 480);
+      const probabilities = hgBinProbabilities(inputs.g);
+      const timings = new Set<HgHistogram['timing']>();
+      const timesByN = new Map<number, number>();
+      this.readouts?.set('sweep', 'sweeping…');
+      this.readouts?.set('sweep-check', 'sweeping…');
+      const where = backend.kind === 'gpu' ? 'GPU' : 'CPU twin';
+      const measure = async (n: number): Promise<Omit<SweepPoint, 'n'>> => {
+        const times: number[] = [];
+        let error = 0;
+        for (let repetition = 0; repetition < SWEEP_REPETITIONS; repetition++) {
+          const pass: HgLobeInputs = {
+            ...inputs,
+            sampleCount: n,
+            samplesExponent: Math.round(Math.log2(n)),
+            seed: inputs.seed + repetition,
+          };
+          const histogram =
+            backend.kind === 'gpu'
+              ? await backend.renderer.sample(pass, layout)
+              : await sampleHistogramCpuInChunks(pass.g, n, pass.seed);
+          timings.add(histogram.timing);
+          times.push(histogram.milliseconds);
+          error += histogramL1(histogram.bins, probabilities, n);
+        }
+        const milliseconds = median(times);
+        timesByN.set(n, milliseconds);
+        return { rmse: error / SWEEP_REPETITIONS, milliseconds };
+      };
+      return {
+        series: [
+          { label: `measured, g = ${formatNumber(inputs.g, 3)}, ${where}`, color: '#d9822b' },
+          { label: 'exact expectation', color: '#8a63d2', dash: [6, 4] },
+        ],
+        measure: async (series, n) =>
+          series === 0
+            ? measure(n)
+            : {
+                rmse: expectedHistogramL1(probabilities, n),
+                milliseconds: timesByN.get(n) ?? Number.NaN,
+              },
+        finish: (points) => {
+          ended = true;
+          const [measured = [], expected = []] = points;
+          const slope = logLogSlope(
+            measured.map((p) => p.n),
+            measured.map((p) => p.rmse),
+          );
+          const expectedSlope = logLogSlope(
+            expected.map((p) => p.n),
+            expected.map((p) => p.rmse),
+          );
+          this.readouts?.set(
+            'sweep',
+            slope === null
+              ? 'no fit'
+              : `p = ${signed(slope)} (exact expectation ${signed(expectedSlope ?? -0.5)})`,
+            slope !== null && Math.abs(slope - (expectedSlope ?? -0.5)) < 0.1 ? 'ok' : 'bad',
+          );
+          const last = measured.at(-1);
+          const lastExpected = expected.at(-1);
+          if (last && lastExpected) {
+            const ratio = last.rmse / lastExpected.rmse;
+            this.readouts?.set(
+              'sweep-check',
+              `${formatNumber(last.rmse, 3)} vs ${formatNumber(lastExpected.rmse, 3)} (ratio ${formatNumber(ratio, 3)})`,
+              // The mean of 3 L1 errors, each a sum over 64 bins, scatters by a few per cent.
+              Math.abs(ratio - 1) < 0.2 ? 'ok' : 'bad',
+            );
+          }
+          const how = [...timings]
+            .map((t) =>
+              t === 'gpu-timestamp'
+                ? 'GPU timestamps'
+                : t === 'gpu-wall'
+                  ? 'wall time (no timestamp queries)'
+                  : 'CPU wall time',
+            )
+            .join(', ');
+          return `g = ${formatNumber(inputs.g, 3)}, ${where}, time from ${how}`;
+        },
+        failed: () => {
+          ended = true;
+          this.readouts?.set('sweep', 'failed', 'bad');
+          this.readouts?.set('sweep-check', 'failed', 'bad');
+        },
+      };
+    });
+    // Cancelled (or the GPU was lost): say so, unless a newer sweep has taken over.
+    if (!ended && run === this.sweepRuns) {
+      this.readouts?.set('sweep', 'cancelled');
+      this.readouts?.set('sweep-check', 'cancelled');
     }
   }
 
@@ -333,6 +503,11 @@ export class HgLobeElement extends WidgetElement {
 }
 
 const SUPERSCRIPT_DIGITS = '⁰¹²³⁴⁵⁶⁷⁸⁹';
+
+/** A slope with three decimals and a true minus sign. */
+function signed(value: number): string {
+  return value.toFixed(3).replace('-', '−');
+}
 
 function superscript(value: number): string {
   return [...String(value)]

@@ -375,3 +375,66 @@ export function polarLayout(inputs: HgLobeInputs, width: number, height: number)
   }
   return layout;
 }
+
+/** The error-versus-time sweep: N = 2^n for n = 10 … 20, the range of the samples slider. */
+export const SWEEP_EXPONENTS = [10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20] as const;
+/** Repetitions per point: the time is their median, the error their mean (seeds s, s + 1, …). */
+export const SWEEP_REPETITIONS = 3;
+
+/**
+ * L1 distance between the histogram's bin frequencies and the analytic bin
+ * probabilities, Σ_k |O_k/N − P_k| (twice the total-variation distance): the
+ * sampler's error as a density estimate on the 64 bins.
+ */
+export function histogramL1(
+  counts: ArrayLike<number>,
+  probabilities: ArrayLike<number>,
+  sampleCount: number,
+): number {
+  let sum = 0;
+  for (let k = 0; k < probabilities.length; k++)
+    sum += Math.abs((counts[k] ?? 0) / sampleCount - (probabilities[k] ?? 0));
+  return sum;
+}
+
+/** ln C(n, k) through ln Γ. */
+function logBinomial(n: number, k: number): number {
+  return logGamma(n + 1) - logGamma(k + 1) - logGamma(n - k + 1);
+}
+
+/**
+ * E|X − Np| for X ~ Binomial(N, p), exactly, by de Moivre's formula
+ * E|X − Np| = 2ν·C(N, ν)·p^ν·(1 − p)^{N−ν+1} with ν = ⌊Np⌋ + 1
+ * (Diaconis and Zabell 1991, "Closed form summation for classical distributions").
+ * Evaluated in logarithms, so N up to 2^20 neither overflows nor underflows early.
+ */
+export function binomialMeanAbsoluteDeviation(sampleCount: number, p: number): number {
+  if (p <= 0 || p >= 1) return 0;
+  const nu = Math.floor(sampleCount * p) + 1;
+  if (nu > sampleCount) return 0;
+  return Math.exp(
+    Math.log(2 * nu) +
+      logBinomial(sampleCount, nu) +
+      nu * Math.log(p) +
+      (sampleCount - nu + 1) * Math.log1p(-p),
+  );
+}
+
+/**
+ * The expected L1 error of a histogram of N independent samples: each count O_k is
+ * Binomial(N, P_k), so E Σ|O_k/N − P_k| = Σ E|O_k − N·P_k|/N, exactly. When every
+ * N·P_k is large this is ≈ √(2/(πN))·Σ√(P_k(1 − P_k)), the N^{−1/2} law of Monte Carlo.
+ */
+export function expectedHistogramL1(probabilities: ArrayLike<number>, sampleCount: number): number {
+  let sum = 0;
+  for (let k = 0; k < probabilities.length; k++)
+    sum += binomialMeanAbsoluteDeviation(sampleCount, probabilities[k] ?? 0);
+  return sum / sampleCount;
+}
+
+/** The median of a non-empty list. */
+export function median(values: readonly number[]): number {
+  const sorted = [...values].sort((a, b) => a - b);
+  const middle = Math.floor(sorted.length / 2);
+  return sorted.length % 2 === 1 ? sorted[middle]! : 0.5 * (sorted[middle - 1]! + sorted[middle]!);
+}

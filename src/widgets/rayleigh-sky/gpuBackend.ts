@@ -1,12 +1,14 @@
 // GPU backend of <sb-rayleigh-sky>: the kernel in shaders/kernels/rayleigh-sky.wesl,
 // linked against the shared library, evaluates the probe directions and the direct
-// sun in a compute pass (timed with timestamp queries where available, wall time
-// otherwise) and draws the panorama in a render pass (wall time, submit to done).
+// sun in a compute pass and draws the panorama in render passes, both timed with
+// timestamp queries where available and wall time otherwise.
 import { runCompute } from '../../gpu/compute.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { GpuTimer } from '../../gpu/timing.ts';
+import type { GpuTiming } from '../base/imageKernel.ts';
 import { exposureScale, probesFor, type Rgb, type SkyInputs, type SkyProbes } from './model.ts';
 
 const KERNEL = 'kernels/rayleigh-sky.wesl';
@@ -68,6 +70,16 @@ export async function computeProbesGpu(
   };
 }
 
+/** The time of one panorama, measured over `passes` identical passes in one submit. */
+export interface PanoramaTime {
+  /** Time per panorama (ms): the span divided by `passes`. */
+  milliseconds: number;
+  /** The measured span (ms), for choosing the next pass count (nextPassCount). */
+  spanMilliseconds: number;
+  passes: number;
+  timing: GpuTiming;
+}
+
 export class RayleighSkyGpu {
   private picture: Promise<FullScreenPass> | null = null;
 
@@ -97,13 +109,33 @@ export class RayleighSkyGpu {
     return computeProbesGpu(this.gpu.device, code, inputs);
   }
 
-  /** Draws the panorama; returns the wall time (ms) from submit until the queue is done. */
-  async draw(inputs: SkyInputs): Promise<number> {
+  /**
+   * Draws the panorama `passes` times in one submit (the canvas shows the last) and
+   * returns the time per panorama: from timestamp queries around the passes where the
+   * device has them, else the wall time from submit until the queue is done.
+   */
+  async draw(inputs: SkyInputs, passes = 1): Promise<PanoramaTime> {
     const pass = await this.pass();
-    const start = performance.now();
-    await pass.draw(packParams(inputs, this.canvas.width, this.canvas.height));
-    await this.gpu.device.queue.onSubmittedWorkDone();
-    return performance.now() - start;
+    const timer = new GpuTimer(this.gpu.device);
+    try {
+      const start = performance.now();
+      await pass.draw(packParams(inputs, this.canvas.width, this.canvas.height), {
+        timer,
+        passes,
+      });
+      await this.gpu.device.queue.onSubmittedWorkDone();
+      const wallMs = performance.now() - start;
+      const gpuMs = await timer.read();
+      const span = gpuMs ?? wallMs;
+      return {
+        milliseconds: span / passes,
+        spanMilliseconds: span,
+        passes,
+        timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+      };
+    } finally {
+      timer.destroy();
+    }
   }
 
   destroy(): void {

@@ -14,6 +14,7 @@
 import { rayleighEval } from '../../reference/phase.ts';
 import { transmittanceFromOpticalThickness } from '../../reference/transmittance.ts';
 import type { ParameterValues } from '../parameters.ts';
+import { logLogSlope, type SweepPoint } from '../base/sweep.ts';
 
 /** Earth radius and top of the atmosphere (m), Bruneton & Neyret 2008. */
 export const EARTH_RADIUS = 6360e3;
@@ -209,13 +210,6 @@ export interface SkyProbes {
   sunTransmittance: Rgb;
 }
 
-export interface SkyResult extends SkyProbes {
-  /** Time of the probe pass and of the picture (ms), and how each was measured. */
-  probeMilliseconds: number;
-  pictureMilliseconds: number;
-  timing: 'gpu-timestamp' | 'gpu-wall' | 'cpu';
-}
-
 /** The probes and the sun with N view and M sun samples, in float64. */
 export function computeProbes(
   inputs: SkyInputs,
@@ -231,17 +225,151 @@ export function computeProbes(
 }
 
 const referenceCache = new Map<string, SkyProbes>();
+const pendingReferences = new Map<string, Promise<SkyProbes>>();
+
+/**
+ * The reference depends on the sun (sin and cos of its elevation) and on whether
+ * air scatters, never on N, M or the exposure: one entry per (elevation, scattering).
+ */
+function referenceKey(inputs: Pick<SkyInputs, 'sinSun' | 'cosSun' | 'scattering'>): string {
+  return `${inputs.sinSun},${inputs.cosSun},${inputs.scattering}`;
+}
+
+function storeReference(key: string, probes: SkyProbes): SkyProbes {
+  if (referenceCache.size > 64) referenceCache.clear();
+  referenceCache.set(key, probes);
+  return probes;
+}
 
 /** The converged reference (N = M = 1024, float64), computed once per sun elevation. */
 export function referenceProbes(inputs: SkyInputs): SkyProbes {
-  const key = `${inputs.sinSun},${inputs.cosSun},${inputs.scattering}`;
-  let cached = referenceCache.get(key);
-  if (!cached) {
-    cached = computeProbes(inputs, REFERENCE_STEPS, REFERENCE_STEPS);
-    if (referenceCache.size > 64) referenceCache.clear();
-    referenceCache.set(key, cached);
+  const key = referenceKey(inputs);
+  return (
+    referenceCache.get(key) ??
+    storeReference(key, computeProbes(inputs, REFERENCE_STEPS, REFERENCE_STEPS))
+  );
+}
+
+/**
+ * The same cached reference, computed one probe at a time with a yield to the page
+ * between probes: a new sun elevation costs 3 × 1024 × 1024 sun-ray samples
+ * (≈ 60 ms in float64), which would otherwise hold up input while a slider moves.
+ * Concurrent requests for one key share one computation.
+ */
+export function referenceProbesAsync(inputs: SkyInputs): Promise<SkyProbes> {
+  const key = referenceKey(inputs);
+  const cached = referenceCache.get(key);
+  if (cached) return Promise.resolve(cached);
+  let pending = pendingReferences.get(key);
+  if (!pending) {
+    pending = (async () => {
+      const radiance: Rgb[] = [];
+      for (const probe of probesFor(inputs)) {
+        await new Promise((resolve) => setTimeout(resolve, 0));
+        radiance.push(
+          skyRadiance(
+            probe.mu,
+            inputs.sinSun,
+            probe.nu,
+            REFERENCE_STEPS,
+            REFERENCE_STEPS,
+            inputs.scattering,
+          ),
+        );
+      }
+      const sun = sunTransmittance(inputs.sinSun, REFERENCE_STEPS, inputs.scattering);
+      return storeReference(key, { radiance, sunTransmittance: sun });
+    })().finally(() => pendingReferences.delete(key));
+    pendingReferences.set(key, pending);
   }
-  return cached;
+  return pending;
+}
+
+/** Whether the reference for these inputs is already cached (tests check it is reused). */
+export function hasCachedReference(inputs: SkyInputs): boolean {
+  return referenceCache.has(referenceKey(inputs));
+}
+
+/**
+ * The sweep's error measure: the relative RMS error over the three probes and the
+ * three channels, √(Σ ((L − L_ref)/L_ref)² / K) over the K pairs with L_ref > 0.
+ * Relative, so the dim red and the bright blue channel weigh alike. Null when
+ * every reference value is 0 (scattering off: both are exactly 0 at every N).
+ */
+export function probeError(
+  estimate: Pick<SkyProbes, 'radiance'>,
+  reference: SkyProbes,
+): number | null {
+  let sum = 0;
+  let count = 0;
+  reference.radiance.forEach((referenceRgb, k) => {
+    for (let c = 0; c < 3; c++) {
+      const exact = referenceRgb[c]!;
+      if (!(exact > 0)) continue;
+      sum += ((estimate.radiance[k]![c]! - exact) / exact) ** 2;
+      count += 1;
+    }
+  });
+  return count > 0 ? Math.sqrt(sum / count) : null;
+}
+
+/** The view-ray sample counts N of the convergence sweep (M = sunStepsFor(N) with each). */
+export const SWEEP_STEPS = [4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128] as const;
+/**
+ * The fits use N ≥ 16 only. Below it the sun ray keeps M = 4 samples, so its
+ * midpoint error stops falling and the curve flattens (≈ 2–3 % at 20–30° from
+ * N = 8 to 16); from N = 16 on, M = N/4 and both rules refine together.
+ */
+export const FIT_FROM_STEPS = 16;
+
+export interface SweepFit {
+  /** p in error ∝ N^p: −2 for the midpoint rule on a smooth integrand (physics.md §3). */
+  order: number | null;
+  /** a in time ∝ N^a: 2 where the work N·M = N²/4 dominates, less where fixed costs do. */
+  timeExponent: number | null;
+  /** q in error ∝ time^q, fitted directly (≈ p/a). */
+  timeOrder: number | null;
+  /** The number of points fitted. */
+  count: number;
+}
+
+/** Least-squares log–log slopes over the sweep points with N ≥ FIT_FROM_STEPS. */
+export function fitSweep(points: readonly SweepPoint[]): SweepFit {
+  const used = points.filter((p) => p.n >= FIT_FROM_STEPS);
+  const n = used.map((p) => p.n);
+  const time = used.map((p) => p.milliseconds);
+  const error = used.map((p) => p.rmse);
+  return {
+    order: logLogSlope(n, error),
+    timeExponent: logLogSlope(n, time),
+    timeOrder: logLogSlope(time, error),
+    count: used.length,
+  };
+}
+
+/** The median of a non-empty list (the middle value, or the mean of the two middle ones). */
+export function median(values: readonly number[]): number {
+  if (values.length === 0) throw new Error('median of an empty list');
+  const sorted = [...values].sort((a, b) => a - b);
+  const middle = Math.floor(sorted.length / 2);
+  return sorted.length % 2 === 1 ? sorted[middle]! : (sorted[middle - 1]! + sorted[middle]!) / 2;
+}
+
+/**
+ * GPU timestamps are quantized (to 100 µs in Chrome), so a panorama that takes a few
+ * µs on a fast GPU reads 0. It is drawn `passes` times in one submit and timed as
+ * one span; this picks the pass count for the next measurement from the last span:
+ * enough passes for TIMED_SPAN_MS, at most MAX_TIMED_PASSES.
+ */
+export const TIMED_SPAN_MS = 2;
+export const MAX_TIMED_PASSES = 64;
+export function nextPassCount(passes: number, spanMilliseconds: number): number {
+  if (spanMilliseconds >= TIMED_SPAN_MS || passes >= MAX_TIMED_PASSES) return passes;
+  const wanted =
+    spanMilliseconds > 0
+      ? Math.ceil((1.25 * passes * TIMED_SPAN_MS) / spanMilliseconds)
+      : 8 * passes;
+  return Math.min(Math.max(wanted, passes + 1), MAX_TIMED_PASSES);
 }
 
 /** Largest relative error over the channels, or null when the reference is 0 (then both are 0). */
