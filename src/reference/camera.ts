@@ -44,7 +44,7 @@ export function cameraFrame(view: Vec3, upHint: Vec3): [Vec3, Vec3, Vec3] {
   const side = cross(forward, upHint);
   const sideLength = length(side);
   const right: Vec3 =
-    sideLength > 1e-6 * length(upHint) && sideLength <= F32_MAX
+    sideLength >= F32_MIN_NORMAL && sideLength > 1e-6 * length(upHint) && sideLength <= F32_MAX
       ? [side[0] / sideLength, side[1] / sideLength, side[2] / sideLength]
       : orthonormalBasis(forward).tangent;
   return [forward, right, cross(right, forward)];

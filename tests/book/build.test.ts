@@ -27,7 +27,13 @@ function render(body: string) {
 describe('the book builds', () => {
   it('has a home page, one page per chapter numbered from the file names, the library appendix and the deck', () => {
     expect(book.pages[0]?.file).toBe('index.html');
-    expect(book.chapters.map((c) => c.number)).toEqual(book.chapters.map((_, i) => i + 1));
+    // Numbers come from the file names and increase; the book may skip numbers while
+    // chapters are being written (DESIGN.md numbers them in lecture order).
+    const numbers = book.chapters.map((c) => c.number);
+    expect(numbers[0]).toBe(1);
+    numbers.slice(1).forEach((n, i) => expect(n).toBeGreaterThan(numbers[i] ?? Infinity));
+    for (const chapter of book.chapters)
+      expect(chapter.slug.startsWith(String(chapter.number).padStart(2, '0'))).toBe(true);
     expect(book.pages.map((p) => p.file).slice(book.chapters.length + 1)).toEqual([
       'appendix/shader-library.html',
       'deck.html',

@@ -15,6 +15,8 @@ test('the deck walks slide by slide with the keyboard, each slide a deep link', 
   const slides = page.locator('.deck-slide');
   const count = await slides.count();
   expect(count).toBeGreaterThanOrEqual(2);
+  // Every slide draws its widget on a CPU WebGPU: allow each slide its own time.
+  test.setTimeout(30_000 + count * 12_000);
   for (let i = 1; i <= count; i++) {
     const slide = page.locator(`#slide-${i}`);
     await expect(slide).toBeVisible();

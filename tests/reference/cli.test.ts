@@ -272,7 +272,7 @@ describe('scatterbook: clear errors (exit status 2)', () => {
       message: /--backend must be gpu or cpu/,
     },
     { name: 'a missing --args', args: ['eval', 'rng.pcgHash'], message: /missing --args/ },
-    { name: 'an unknown command', args: ['render'], message: /unknown command "render"/ },
+    { name: 'an unknown command', args: ['frobnicate'], message: /unknown command "frobnicate"/ },
     {
       name: 'no MODULE.FUNCTION',
       args: ['eval', 'pcgHash', '--args', '[[1]]'],
