@@ -1,0 +1,969 @@
+// Float64 twin of shaders/integrator.wesl: the emission–absorption, single-scattering
+// and path-tracing estimators of a packed scene. The WGSL module reads its scene from
+// module-scope bindings; here they are the first argument, `scene` (SceneData: the same
+// packed f32 records, the grid's samples, the link conditions the kernel was specialized
+// with, and counters). Each function draws its random numbers in the same order as the
+// shader, so a sample replays the GPU's PCG stream; f32 rounding makes long paths
+// diverge, which is why the tests compare images by z-scores, not bit for bit.
+//
+// Honouring the conditions makes the twin both the oracle of any specialized kernel and
+// the CPU fallback that runs only the planned effects.
+import {
+  cameraOrthographic,
+  cameraPerspective,
+  CAMERA_ORTHOGRAPHIC,
+  type Camera,
+} from './camera.ts';
+import { RAY_T_LIMIT, rayBoxSegment, raySphereSegment } from './geometry.ts';
+import {
+  LIGHT_DIRECTIONAL,
+  LIGHT_ENVIRONMENT,
+  LIGHT_POINT,
+  LIGHT_SPOT,
+  lightSampleDirectional,
+  lightSamplePoint,
+  lightSampleSpot,
+  type Light,
+  type LightSample,
+} from './lights.ts';
+import { gridDensityTrilinear, gridMajorantAlongRay, type DensityGrid } from './medium.ts';
+import {
+  hgEvalDirections,
+  hgSample,
+  phaseIsotropic,
+  rayleighEval,
+  rayleighSample,
+  sampleUniformSphere,
+  type Vec3,
+} from './phase.ts';
+import { rngNextFloat, type RngState } from './rng.ts';
+import { equiangularSample } from './scatter.ts';
+import {
+  SURFACE_NO_HIT,
+  lambertianBrdf,
+  sampleCosineHemisphere,
+  surfaceHitDistance,
+  surfaceNormalFacing,
+  surfaceOffsetOrigin,
+  type Surface,
+} from './surfaces.ts';
+import { TRACKING_MAX_STEPS, sampleFreeFlight } from './tracking.ts';
+import { transmittanceHomogeneous } from './transmittance.ts';
+
+export const SCENE_MAX_MEDIA = 4;
+export const SCENE_MAX_LIGHTS = 8;
+export const SCENE_MAX_SURFACES = 16;
+export const SCENE_CAMERA_RECORD = 1;
+export const SCENE_GRID_RECORD = 5;
+export const SCENE_MAJORANT_RECORD = 8;
+export const SCENE_MEDIA_RECORD = 11;
+export const SCENE_LIGHTS_RECORD = 35;
+export const SCENE_SURFACES_RECORD = 67;
+export const SCENE_RECORDS = 131;
+export const SCENE_ORDER_UNLIMITED = 0xffffffff;
+export const SCENE_MEDIUM_HOMOGENEOUS = 0;
+export const SCENE_MEDIUM_GRID = 1;
+export const SCENE_BOUNDS_BOX = 0;
+export const SCENE_BOUNDS_SPHERE = 1;
+export const SCENE_PHASE_ISOTROPIC = 0;
+export const SCENE_PHASE_HG = 1;
+export const SCENE_PHASE_RAYLEIGH = 2;
+export const PATH_MAX_VERTICES = 1024;
+export const FLIGHT_PASSED = 0;
+export const FLIGHT_ABSORBED = 1;
+export const FLIGHT_SCATTERED = 2;
+export const SEGMENT_MAX_POINTS = 9;
+export const VERTEX_MEDIUM = 0;
+export const VERTEX_SURFACE = 1;
+export const VERTEX_LIGHTS_ALL = 0xffffffff;
+export const VERTEX_LIGHTS_DISTANT = 0xfffffffe;
+
+type Rgb = [number, number, number];
+
+/** The GPU's bound resources and link conditions, for the twin. */
+export interface SceneData {
+  /** The packed records (4 words each) as f32, and the same words as u32. */
+  records: Float32Array;
+  words: Uint32Array;
+  /** Samples of the density grid and of its majorant grid (x fastest). */
+  density: Float32Array;
+  majorant: Float32Array;
+  /** The WESL conditions the kernel was linked with (absent names are false). */
+  conditions: Readonly<Record<string, boolean>>;
+  /** Counters of the current pixel, as sceneLookups and sceneCapped. */
+  stats: { lookups: number; capped: number };
+  /** Decoded records, filled on first use. */
+  cache?: { media: SceneMedium[]; lights: Light[]; surfaces: Surface[]; grids: DensityGrid[] };
+}
+
+export interface SceneMedium {
+  kind: number;
+  shape: number;
+  phase: number;
+  g: number;
+  boundsA: Vec3;
+  radius: number;
+  boundsB: Vec3;
+  sigmaA: Rgb;
+  sigmaS: Rgb;
+  emission: Rgb;
+}
+
+export interface SegmentList {
+  count: number;
+  media: number[];
+  segments: [number, number][];
+}
+
+export interface SurfaceHit {
+  t: number;
+  index: number;
+}
+
+export interface SegmentPoints {
+  count: number;
+  t: number[];
+  transmittance: Rgb[];
+}
+
+export interface SegmentWalk {
+  transmittance: Rgb;
+  emitted: Rgb;
+  scatterT: number;
+  scatterWeight: Rgb;
+}
+
+export interface Vertex {
+  position: Vec3;
+  kind: number;
+  wo: Vec3;
+  medium: number;
+  normal: Vec3;
+  lights: number;
+  albedo: Vec3;
+}
+
+export interface FreeFlight {
+  t: number;
+  event: number;
+  weight: Rgb;
+  emitted: Rgb;
+}
+
+const on = (scene: SceneData, name: string): boolean => scene.conditions[name] === true;
+const add = (a: Rgb, b: Rgb): Rgb => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+const mul = (a: Rgb, b: Rgb): Rgb => [a[0] * b[0], a[1] * b[1], a[2] * b[2]];
+const scale = (a: Rgb, s: number): Rgb => [a[0] * s, a[1] * s, a[2] * s];
+const anyPositive = (a: readonly number[]): boolean => a[0]! > 0 || a[1]! > 0 || a[2]! > 0;
+const allZero = (a: Rgb): boolean => a[0] === 0 && a[1] === 0 && a[2] === 0;
+const at = (o: Vec3, d: Vec3, t: number): Vec3 => [
+  o[0] + t * d[0],
+  o[1] + t * d[1],
+  o[2] + t * d[2],
+];
+const neg = (v: Vec3): Vec3 => [-v[0], -v[1], -v[2]];
+const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const clampRgb = (a: Rgb): Rgb => a.map((x) => Math.min(Math.max(x, 0), 1)) as Rgb;
+
+function vec(scene: SceneData, record: number): Vec3 {
+  const r = scene.records;
+  return [r[4 * record]!, r[4 * record + 1]!, r[4 * record + 2]!];
+}
+const field = (scene: SceneData, record: number, k: number): number =>
+  scene.records[4 * record + k]!;
+const word = (scene: SceneData, record: number, k: number): number => scene.words[4 * record + k]!;
+
+export function maxComponent(v: readonly number[]): number {
+  return Math.max(v[0]!, v[1]!, v[2]!);
+}
+
+export function averageComponent(v: readonly number[]): number {
+  return (v[0]! + v[1]! + v[2]!) / 3;
+}
+
+export function sceneHeader(scene: SceneData): [number, number, number, number] {
+  return [word(scene, 0, 0), word(scene, 0, 1), word(scene, 0, 2), word(scene, 0, 3)];
+}
+
+export function sceneCamera(scene: SceneData): Camera {
+  const c = SCENE_CAMERA_RECORD;
+  const size = [field(scene, c + 3, 0), field(scene, c + 3, 1)] as const;
+  if (word(scene, c, 3) === CAMERA_ORTHOGRAPHIC)
+    return cameraOrthographic(
+      vec(scene, c),
+      vec(scene, c + 1),
+      vec(scene, c + 2),
+      field(scene, c + 2, 3),
+      field(scene, c + 3, 2),
+      size[0],
+      size[1],
+    );
+  return cameraPerspective(
+    vec(scene, c),
+    vec(scene, c + 1),
+    vec(scene, c + 2),
+    field(scene, c + 1, 3),
+    size[0],
+    size[1],
+  );
+}
+
+function decoded(scene: SceneData): NonNullable<SceneData['cache']> {
+  if (scene.cache) return scene.cache;
+  const media: SceneMedium[] = [];
+  for (let i = 0; i < SCENE_MAX_MEDIA; i++) {
+    const o = SCENE_MEDIA_RECORD + 6 * i;
+    media.push({
+      kind: word(scene, o, 0),
+      shape: word(scene, o, 1),
+      phase: word(scene, o, 2),
+      g: field(scene, o, 3),
+      boundsA: vec(scene, o + 1),
+      radius: field(scene, o + 1, 3),
+      boundsB: vec(scene, o + 2),
+      sigmaA: vec(scene, o + 3) as Rgb,
+      sigmaS: vec(scene, o + 4) as Rgb,
+      emission: vec(scene, o + 5) as Rgb,
+    });
+  }
+  const lights: Light[] = [];
+  for (let i = 0; i < SCENE_MAX_LIGHTS; i++) {
+    const o = SCENE_LIGHTS_RECORD + 4 * i;
+    lights.push({
+      kind: word(scene, o, 0),
+      cosOuter: field(scene, o, 1),
+      cosInner: field(scene, o, 2),
+      position: vec(scene, o + 1),
+      direction: vec(scene, o + 2),
+      value: vec(scene, o + 3),
+    });
+  }
+  const surfaces: Surface[] = [];
+  for (let i = 0; i < SCENE_MAX_SURFACES; i++) {
+    const o = SCENE_SURFACES_RECORD + 4 * i;
+    surfaces.push({
+      kind: word(scene, o, 0),
+      a: vec(scene, o + 1),
+      radius: field(scene, o + 1, 3),
+      b: vec(scene, o + 2),
+      albedo: vec(scene, o + 3),
+    });
+  }
+  const grid = (record: number): DensityGrid => ({
+    dimensions: [word(scene, record, 0), word(scene, record, 1), word(scene, record, 2)],
+    densityScale: field(scene, record, 3),
+    boundsMin: vec(scene, record + 1),
+    boundsMax: vec(scene, record + 2),
+  });
+  scene.cache = {
+    media,
+    lights,
+    surfaces,
+    grids: [grid(SCENE_GRID_RECORD), grid(SCENE_MAJORANT_RECORD)],
+  };
+  return scene.cache;
+}
+
+export function sceneGridAt(scene: SceneData, record: number): DensityGrid {
+  return decoded(scene).grids[record === SCENE_MAJORANT_RECORD ? 1 : 0]!;
+}
+
+export function sceneMedium(scene: SceneData, index: number): SceneMedium {
+  return decoded(scene).media[index]!;
+}
+
+export function sceneLight(scene: SceneData, index: number): Light {
+  return decoded(scene).lights[index]!;
+}
+
+export function sceneSurface(scene: SceneData, index: number): Surface {
+  return decoded(scene).surfaces[index]!;
+}
+
+export function mediumSegment(
+  medium: SceneMedium,
+  origin: Vec3,
+  direction: Vec3,
+  tMin: number,
+  tMax: number,
+): [number, number] {
+  const segment =
+    medium.shape === SCENE_BOUNDS_SPHERE
+      ? raySphereSegment(medium.boundsA, medium.radius, origin, direction, tMin, tMax)
+      : rayBoxSegment(medium.boundsA, medium.boundsB, origin, direction, tMin, tMax);
+  return [segment[0], segment[1]];
+}
+
+export function mediumDensity(scene: SceneData, medium: SceneMedium, p: Vec3): number {
+  if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
+    scene.stats.lookups += 1;
+    return gridDensityTrilinear(sceneGridAt(scene, SCENE_GRID_RECORD), scene.density, p);
+  }
+  return 1;
+}
+
+export function mediumMajorant(
+  scene: SceneData,
+  medium: SceneMedium,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+): number {
+  const sigmaT = maxComponent(add(medium.sigmaA, medium.sigmaS));
+  if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
+    const majorant = gridMajorantAlongRay(
+      sceneGridAt(scene, SCENE_MAJORANT_RECORD),
+      scene.majorant,
+      origin,
+      direction,
+      segment[0],
+      segment[1],
+    );
+    if (majorant.capped !== 0) return field(scene, SCENE_MAJORANT_RECORD + 1, 3) * sigmaT;
+    return majorant.majorant * sigmaT;
+  }
+  return sigmaT;
+}
+
+export function transmittanceBeer(sigmaT: Rgb, distance: number): Rgb {
+  return sigmaT.map((s) => transmittanceHomogeneous(s, distance)) as Rgb;
+}
+
+export function segmentWalk(
+  scene: SceneData,
+  medium: SceneMedium,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+  majorant: number,
+  emit: boolean,
+  scatter: boolean,
+  points: SegmentPoints,
+  state: RngState,
+): SegmentWalk {
+  const sigmaT = add(medium.sigmaA, medium.sigmaS);
+  const count = Math.min(points.count, SEGMENT_MAX_POINTS);
+  const walk: SegmentWalk = {
+    transmittance: [1, 1, 1],
+    emitted: [0, 0, 0],
+    scatterT: -1,
+    scatterWeight: [0, 0, 0],
+  };
+  if (on(scene, 'homogeneousClosedForm') && medium.kind === SCENE_MEDIUM_HOMOGENEOUS) {
+    const length = segment[1] - segment[0];
+    for (let i = 0; i < count; i++)
+      points.transmittance[i] = transmittanceBeer(sigmaT, points.t[i]! - segment[0]);
+    walk.transmittance = transmittanceBeer(sigmaT, length);
+    if (emit) walk.emitted = emissionClosedForm(medium, length);
+    if (scatter) {
+      const rate = averageComponent(sigmaT);
+      const s = sampleTruncatedExponential(rate, length, rngNextFloat(state));
+      walk.scatterT = segment[0] + s;
+      walk.scatterWeight = scale(
+        mul(transmittanceBeer(sigmaT, s), medium.sigmaS),
+        1 / truncatedExponentialPdf(rate, length, s),
+      );
+    }
+    return walk;
+  }
+  for (let i = 0; i < count; i++) points.transmittance[i] = [1, 1, 1];
+  if (!(majorant > 0) || !(segment[1] > segment[0])) return walk;
+  // Ratio tracking with collision estimators; a weighted reservoir keeps one collision.
+  let reservoir = 0;
+  let chosen = 0;
+  let t = segment[0];
+  for (let steps = 0; ; steps++) {
+    const flight = sampleFreeFlight(majorant, rngNextFloat(state));
+    if (flight >= segment[1] - t) break;
+    if (steps >= TRACKING_MAX_STEPS) {
+      scene.stats.capped += 1;
+      break;
+    }
+    t += flight;
+    const density = mediumDensity(scene, medium, at(origin, direction, t));
+    if (emit)
+      walk.emitted = add(
+        walk.emitted,
+        scale(mul(mul(walk.transmittance, medium.sigmaA), medium.emission), density / majorant),
+      );
+    if (scatter) {
+      const g = scale(mul(walk.transmittance, medium.sigmaS), density / majorant);
+      const w = averageComponent(g);
+      if (w > 0) {
+        reservoir += w;
+        if (rngNextFloat(state) * reservoir < w) {
+          walk.scatterT = t;
+          walk.scatterWeight = g;
+          chosen = w;
+        }
+      }
+    }
+    const factor = sigmaT.map((s) => Math.max(1 - (density * s) / majorant, 0)) as Rgb;
+    walk.transmittance = mul(walk.transmittance, factor);
+    for (let i = 0; i < count; i++)
+      if (t < points.t[i]!) points.transmittance[i] = mul(points.transmittance[i]!, factor);
+    if (allZero(walk.transmittance)) break;
+  }
+  if (chosen > 0) walk.scatterWeight = scale(walk.scatterWeight, reservoir / chosen);
+  return walk;
+}
+
+export function sceneSegments(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  tMax: number,
+): SegmentList {
+  const list: SegmentList = { count: 0, media: [], segments: [] };
+  if (!on(scene, 'media')) return list;
+  const count = Math.min(sceneHeader(scene)[0], SCENE_MAX_MEDIA);
+  const found: { index: number; segment: [number, number] }[] = [];
+  for (let i = 0; i < count; i++) {
+    const segment = mediumSegment(sceneMedium(scene, i), origin, direction, 0, tMax);
+    if (segment[0] < segment[1]) found.push({ index: i, segment });
+  }
+  // A stable sort by entry: the same order as the shader's insertion sort.
+  found.sort((a, b) => a.segment[0] - b.segment[0]);
+  for (const f of found) {
+    list.media.push(f.index);
+    list.segments.push(f.segment);
+  }
+  list.count = found.length;
+  return list;
+}
+
+export function closestSurface(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  tMax: number,
+): SurfaceHit {
+  const hit: SurfaceHit = { t: SURFACE_NO_HIT, index: 0 };
+  if (!on(scene, 'surfaces')) return hit;
+  const count = Math.min(sceneHeader(scene)[2], SCENE_MAX_SURFACES);
+  for (let i = 0; i < count; i++) {
+    const t = surfaceHitDistance(
+      sceneSurface(scene, i),
+      origin,
+      direction,
+      0,
+      Math.min(tMax, hit.t),
+    );
+    if (t < hit.t) {
+      hit.t = t;
+      hit.index = i;
+    }
+  }
+  return hit;
+}
+
+export function sceneTransmittance(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  tMax: number,
+  state: RngState,
+): Rgb {
+  let transmittance: Rgb = [1, 1, 1];
+  if (!on(scene, 'media')) return transmittance;
+  const count = Math.min(sceneHeader(scene)[0], SCENE_MAX_MEDIA);
+  for (let i = 0; i < count; i++) {
+    const medium = sceneMedium(scene, i);
+    const segment = mediumSegment(medium, origin, direction, 0, tMax);
+    if (segment[0] < segment[1]) {
+      const majorant = mediumMajorant(scene, medium, origin, direction, segment);
+      const none = emptyPoints();
+      const walk = segmentWalk(
+        scene,
+        medium,
+        origin,
+        direction,
+        segment,
+        majorant,
+        false,
+        false,
+        none,
+        state,
+      );
+      transmittance = mul(transmittance, walk.transmittance);
+      if (allZero(transmittance)) return transmittance;
+    }
+  }
+  return transmittance;
+}
+
+export function shadowTransmittance(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  distance: number,
+  state: RngState,
+): Rgb {
+  if (
+    on(scene, 'surfaces') &&
+    closestSurface(scene, origin, direction, distance).t < SURFACE_NO_HIT
+  )
+    return [0, 0, 0];
+  return sceneTransmittance(scene, origin, direction, distance, state);
+}
+
+export function mediumPhaseEval(scene: SceneData, medium: SceneMedium, wo: Vec3, wi: Vec3): number {
+  if (on(scene, 'phaseHg') && medium.phase === SCENE_PHASE_HG)
+    return hgEvalDirections(medium.g, wo, wi);
+  if (on(scene, 'phaseRayleigh') && medium.phase === SCENE_PHASE_RAYLEIGH)
+    return rayleighEval(-dot(wo, wi));
+  return phaseIsotropic();
+}
+
+export function mediumPhaseSample(
+  scene: SceneData,
+  medium: SceneMedium,
+  wo: Vec3,
+  u: readonly [number, number],
+): Vec3 {
+  if (on(scene, 'phaseHg') && medium.phase === SCENE_PHASE_HG) return hgSample(medium.g, wo, u).wi;
+  if (on(scene, 'phaseRayleigh') && medium.phase === SCENE_PHASE_RAYLEIGH)
+    return rayleighSample(wo, u).wi;
+  return sampleUniformSphere(u);
+}
+
+const NO_LIGHT: LightSample = { direction: [0, 0, 1], distance: 0, irradiance: [0, 0, 0] };
+
+export function deltaLightSample(scene: SceneData, light: Light, p: Vec3): LightSample {
+  if (on(scene, 'lightDirectional') && light.kind === LIGHT_DIRECTIONAL)
+    return lightSampleDirectional(light);
+  if (on(scene, 'lightPoint') && light.kind === LIGHT_POINT) return lightSamplePoint(light, p);
+  if (on(scene, 'lightSpot') && light.kind === LIGHT_SPOT) return lightSampleSpot(light, p);
+  return NO_LIGHT;
+}
+
+export function environmentRadiance(scene: SceneData): Rgb {
+  let radiance: Rgb = [0, 0, 0];
+  const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
+  for (let i = 0; i < count; i++) {
+    const light = sceneLight(scene, i);
+    if (light.kind === LIGHT_ENVIRONMENT)
+      radiance = add(radiance, light.value.map((v) => Math.max(v, 0)) as Rgb);
+  }
+  return radiance;
+}
+
+export function mediumVertex(p: Vec3, direction: Vec3, medium: number, lights: number): Vertex {
+  return {
+    position: p,
+    kind: VERTEX_MEDIUM,
+    wo: neg(direction),
+    medium,
+    normal: [0, 0, 1],
+    lights,
+    albedo: [0, 0, 0],
+  };
+}
+
+export function surfaceVertex(surface: Surface, origin: Vec3, direction: Vec3, t: number): Vertex {
+  const p = at(origin, direction, t);
+  const normal = surfaceNormalFacing(surface, p, direction);
+  return {
+    position: surfaceOffsetOrigin(p, normal),
+    kind: VERTEX_SURFACE,
+    wo: neg(direction),
+    medium: 0,
+    normal,
+    lights: VERTEX_LIGHTS_ALL,
+    albedo: surface.albedo,
+  };
+}
+
+export function vertexDirectLighting(scene: SceneData, vertex: Vertex, state: RngState): Rgb {
+  let radiance: Rgb = [0, 0, 0];
+  if (!(on(scene, 'lightDirectional') || on(scene, 'lightPoint') || on(scene, 'lightSpot')))
+    return radiance;
+  const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
+  for (let i = 0; i < count; i++) {
+    const light = sceneLight(scene, i);
+    const local = light.kind === LIGHT_POINT || light.kind === LIGHT_SPOT;
+    if (
+      (vertex.lights === VERTEX_LIGHTS_DISTANT && local) ||
+      (vertex.lights < SCENE_MAX_LIGHTS && i !== vertex.lights)
+    )
+      continue;
+    const sample = deltaLightSample(scene, light, vertex.position);
+    let response: Rgb = [0, 0, 0];
+    if (vertex.kind === VERTEX_SURFACE) {
+      if (on(scene, 'surfaceScattering'))
+        response = scale(
+          lambertianBrdf(vertex.albedo) as Rgb,
+          Math.max(dot(vertex.normal, sample.direction), 0),
+        );
+    } else if (on(scene, 'volumeScattering')) {
+      const p = mediumPhaseEval(
+        scene,
+        sceneMedium(scene, vertex.medium),
+        vertex.wo,
+        sample.direction,
+      );
+      response = [p, p, p];
+    }
+    const unshadowed = mul(response, sample.irradiance as Rgb);
+    if (anyPositive(unshadowed)) {
+      const shadow = shadowTransmittance(
+        scene,
+        vertex.position,
+        sample.direction,
+        sample.distance,
+        state,
+      );
+      radiance = add(radiance, mul(unshadowed, shadow));
+    }
+  }
+  return radiance;
+}
+
+export function vertexSampleDirection(
+  scene: SceneData,
+  vertex: Vertex,
+  u: readonly [number, number],
+): Vec3 {
+  if (vertex.kind === VERTEX_SURFACE) return sampleCosineHemisphere(vertex.normal, u);
+  return mediumPhaseSample(scene, sceneMedium(scene, vertex.medium), vertex.wo, u);
+}
+
+export function vertexScatterWeight(vertex: Vertex): Rgb {
+  return vertex.kind === VERTEX_SURFACE ? clampRgb(vertex.albedo as Rgb) : [1, 1, 1];
+}
+
+/** Inverse CDF of the truncated exponential: s = −ln(1 − u(1 − e^{−kL}))/k. */
+export function sampleTruncatedExponential(rate: number, length: number, u: number): number {
+  const k = Math.max(rate, 0);
+  if (k * length === 0) return Math.min(Math.max(u * length, 0), length);
+  return Math.min(Math.max(-Math.log1p(u * Math.expm1(-k * length)) / k, 0), length);
+}
+
+/** k e^{−ks}/(1 − e^{−kL}); the uniform 1/L when kL = 0. */
+export function truncatedExponentialPdf(rate: number, length: number, s: number): number {
+  const k = Math.max(rate, 0);
+  if (k * length === 0) return 1 / length;
+  return (k * Math.exp(-k * s)) / -Math.expm1(-k * length);
+}
+
+export function mediumEmits(scene: SceneData, medium: SceneMedium): boolean {
+  return on(scene, 'emission') && anyPositive(medium.emission) && anyPositive(medium.sigmaA);
+}
+
+/** ∫₀^L e^{−σt s} σa Le ds = (σa/σt)(1 − e^{−σt L}) Le, written with expm1 (σt = 0: σa L Le). */
+export function emissionClosedForm(medium: SceneMedium, length: number): Rgb {
+  return medium.sigmaA.map((a, c) => {
+    const sigmaT = a + medium.sigmaS[c]!;
+    const integral = sigmaT > 0 ? -Math.expm1(-sigmaT * length) / sigmaT : length;
+    return a * integral * medium.emission[c]!;
+  }) as Rgb;
+}
+
+const emptyPoints = (): SegmentPoints => ({ count: 0, t: [], transmittance: [] });
+
+export function estimateEmissionAbsorption(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  state: RngState,
+): Rgb {
+  let radiance: Rgb = [0, 0, 0];
+  if (!(on(scene, 'emission') || on(scene, 'lightEnvironment'))) return radiance;
+  const hit = closestSurface(scene, origin, direction, RAY_T_LIMIT);
+  const list = sceneSegments(scene, origin, direction, Math.min(hit.t, RAY_T_LIMIT));
+  let transmittance: Rgb = [1, 1, 1];
+  for (let k = 0; k < list.count; k++) {
+    const medium = sceneMedium(scene, list.media[k]!);
+    const segment = list.segments[k]!;
+    const majorant = mediumMajorant(scene, medium, origin, direction, segment);
+    const emits = mediumEmits(scene, medium);
+    const walk = segmentWalk(
+      scene,
+      medium,
+      origin,
+      direction,
+      segment,
+      majorant,
+      emits,
+      false,
+      emptyPoints(),
+      state,
+    );
+    radiance = add(radiance, mul(transmittance, walk.emitted));
+    transmittance = mul(transmittance, walk.transmittance);
+  }
+  if (on(scene, 'lightEnvironment') && hit.t === SURFACE_NO_HIT)
+    radiance = add(radiance, mul(transmittance, environmentRadiance(scene)));
+  return radiance;
+}
+
+export function equiangularSegmentSample(
+  position: Vec3,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+  xi: number,
+): [number, number] {
+  const tClosest = dot(
+    [position[0] - origin[0], position[1] - origin[1], position[2] - origin[2]],
+    direction,
+  );
+  const closest = at(origin, direction, tClosest);
+  const h = Math.hypot(
+    closest[0] - position[0],
+    closest[1] - position[1],
+    closest[2] - position[2],
+  );
+  const thetaA = Math.atan2(segment[0] - tClosest, h);
+  const thetaB = Math.atan2(segment[1] - tClosest, h);
+  const [t, pdf] = equiangularSample(h, thetaA, thetaB, xi);
+  if (!(pdf > 0))
+    return [segment[0] + xi * (segment[1] - segment[0]), 1 / (segment[1] - segment[0])];
+  return [Math.min(Math.max(tClosest + t, segment[0]), segment[1]), pdf];
+}
+
+export function estimateSingleScattering(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  state: RngState,
+): Rgb {
+  const firstOrder = sceneHeader(scene)[3] >= 1;
+  const equiangular = on(scene, 'equiangular');
+  const secondary = on(scene, 'lightEnvironment') || on(scene, 'emission');
+  const hit = closestSurface(scene, origin, direction, RAY_T_LIMIT);
+  const list = sceneSegments(scene, origin, direction, Math.min(hit.t, RAY_T_LIMIT));
+  let radiance: Rgb = [0, 0, 0];
+  let transmittance: Rgb = [1, 1, 1];
+  for (let k = 0; k <= list.count; k++) {
+    // The segment's vertices: t, weight (in points.transmittance) and the lights each takes.
+    const points = emptyPoints();
+    const pdf: number[] = [];
+    const lights: number[] = [];
+    let vertices = 0;
+    let segmentT: Rgb = [1, 1, 1];
+    if (k < list.count) {
+      const medium = sceneMedium(scene, list.media[k]!);
+      const segment = list.segments[k]!;
+      const majorant = mediumMajorant(scene, medium, origin, direction, segment);
+      const scatters = on(scene, 'volumeScattering') && firstOrder && anyPositive(medium.sigmaS);
+      // Equiangular points in homogeneous media only (the shader's comment says why).
+      const local = equiangular && scatters && medium.kind === SCENE_MEDIUM_HOMOGENEOUS;
+      const sharedLights = local ? VERTEX_LIGHTS_DISTANT : VERTEX_LIGHTS_ALL;
+      if (local) {
+        const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
+        for (let i = 0; i < count; i++) {
+          const light = sceneLight(scene, i);
+          if (light.kind !== LIGHT_POINT && light.kind !== LIGHT_SPOT) continue;
+          const [t, p] = equiangularSegmentSample(
+            light.position,
+            origin,
+            direction,
+            segment,
+            rngNextFloat(state),
+          );
+          points.t.push(t);
+          pdf.push(p);
+          lights.push(i);
+          points.count += 1;
+        }
+      }
+      const walk = segmentWalk(
+        scene,
+        medium,
+        origin,
+        direction,
+        segment,
+        majorant,
+        mediumEmits(scene, medium),
+        scatters,
+        points,
+        state,
+      );
+      radiance = add(radiance, mul(transmittance, walk.emitted));
+      segmentT = walk.transmittance;
+      for (let i = 0; i < points.count; i++) {
+        const density = mediumDensity(scene, medium, at(origin, direction, points.t[i]!));
+        points.transmittance[i] = scale(
+          mul(mul(transmittance, points.transmittance[i]!), medium.sigmaS),
+          density / pdf[i]!,
+        );
+      }
+      vertices = points.count;
+      if (walk.scatterT >= 0) {
+        points.t[vertices] = walk.scatterT;
+        points.transmittance[vertices] = mul(transmittance, walk.scatterWeight);
+        lights[vertices] = sharedLights;
+        vertices += 1;
+      }
+    } else if (hit.t === SURFACE_NO_HIT) {
+      if (on(scene, 'lightEnvironment'))
+        radiance = add(radiance, mul(transmittance, environmentRadiance(scene)));
+    } else if (on(scene, 'surfaceScattering') && firstOrder) {
+      vertices = 1;
+    }
+    for (let i = 0; i < vertices; i++) {
+      let vertex: Vertex;
+      let weight = transmittance;
+      if (k < list.count) {
+        vertex = mediumVertex(
+          at(origin, direction, points.t[i]!),
+          direction,
+          list.media[k]!,
+          lights[i]!,
+        );
+        weight = points.transmittance[i]!;
+      } else {
+        vertex = surfaceVertex(sceneSurface(scene, hit.index), origin, direction, hit.t);
+      }
+      radiance = add(radiance, mul(weight, vertexDirectLighting(scene, vertex, state)));
+      if (secondary && vertex.lights >= SCENE_MAX_LIGHTS) {
+        const wi = vertexSampleDirection(scene, vertex, [rngNextFloat(state), rngNextFloat(state)]);
+        const arriving = estimateEmissionAbsorption(scene, vertex.position, wi, state);
+        radiance = add(radiance, mul(mul(weight, vertexScatterWeight(vertex)), arriving));
+      }
+    }
+    transmittance = mul(transmittance, segmentT);
+  }
+  return radiance;
+}
+
+export function mediumFreeFlight(
+  scene: SceneData,
+  medium: SceneMedium,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+  throughput: Rgb,
+  state: RngState,
+): FreeFlight {
+  const flight: FreeFlight = {
+    t: segment[1],
+    event: FLIGHT_PASSED,
+    weight: [...throughput],
+    emitted: [0, 0, 0],
+  };
+  const majorant = mediumMajorant(scene, medium, origin, direction, segment);
+  if (!(majorant > 0)) return flight;
+  const emission = on(scene, 'emission');
+  let t = segment[0];
+  for (let steps = 0; ; steps++) {
+    const step = sampleFreeFlight(majorant, rngNextFloat(state));
+    if (step >= segment[1] - t) return flight;
+    if (steps >= TRACKING_MAX_STEPS) {
+      scene.stats.capped += 1;
+      return flight;
+    }
+    t += step;
+    const density = mediumDensity(scene, medium, at(origin, direction, t));
+    const sigmaA = scale(medium.sigmaA, density);
+    const sigmaS = scale(medium.sigmaS, density);
+    const sigmaN = sigmaA.map((a, c) => Math.max(majorant - a - sigmaS[c]!, 0)) as Rgb;
+    if (emission)
+      flight.emitted = add(
+        flight.emitted,
+        scale(mul(mul(flight.weight, sigmaA), medium.emission), 1 / majorant),
+      );
+    const pa = averageComponent(mul(sigmaA, flight.weight));
+    const ps = averageComponent(mul(sigmaS, flight.weight));
+    const pn = averageComponent(mul(sigmaN, flight.weight));
+    const total = pa + ps + pn;
+    const xi = rngNextFloat(state) * total;
+    if (!(total > 0) || xi < pa || (ps <= 0 && pn <= 0)) {
+      flight.t = t;
+      flight.event = FLIGHT_ABSORBED;
+      return flight;
+    }
+    if (xi < pa + ps || pn <= 0) {
+      flight.t = t;
+      flight.event = FLIGHT_SCATTERED;
+      flight.weight = scale(mul(flight.weight, sigmaS), total / (majorant * ps));
+      return flight;
+    }
+    flight.weight = scale(mul(flight.weight, sigmaN), total / (majorant * pn));
+  }
+}
+
+export function estimatePathTracing(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  state: RngState,
+): Rgb {
+  const maxOrder = sceneHeader(scene)[3];
+  let radiance: Rgb = [0, 0, 0];
+  let weight: Rgb = [1, 1, 1];
+  let rayOrigin = origin;
+  let rayDirection = direction;
+  let order = 0;
+  for (let segmentIndex = 0; segmentIndex < PATH_MAX_VERTICES; segmentIndex++) {
+    const hit = closestSurface(scene, rayOrigin, rayDirection, RAY_T_LIMIT);
+    const list = sceneSegments(scene, rayOrigin, rayDirection, Math.min(hit.t, RAY_T_LIMIT));
+    let event = FLIGHT_PASSED;
+    let eventT = 0;
+    let eventMedium = 0;
+    for (let k = 0; k < list.count; k++) {
+      const flight = mediumFreeFlight(
+        scene,
+        sceneMedium(scene, list.media[k]!),
+        rayOrigin,
+        rayDirection,
+        list.segments[k]!,
+        weight,
+        state,
+      );
+      if (on(scene, 'emission')) radiance = add(radiance, flight.emitted);
+      weight = flight.weight;
+      if (flight.event !== FLIGHT_PASSED) {
+        event = flight.event;
+        eventT = flight.t;
+        eventMedium = list.media[k]!;
+        break;
+      }
+    }
+    if (event === FLIGHT_ABSORBED) return radiance;
+    if (event === FLIGHT_PASSED && hit.t === SURFACE_NO_HIT) {
+      if (on(scene, 'lightEnvironment'))
+        radiance = add(radiance, mul(weight, environmentRadiance(scene)));
+      return radiance;
+    }
+    order += 1;
+    if (order > maxOrder) return radiance;
+    let vertex: Vertex;
+    if (event === FLIGHT_SCATTERED) {
+      if (!on(scene, 'volumeScattering')) return radiance;
+      vertex = mediumVertex(
+        at(rayOrigin, rayDirection, eventT),
+        rayDirection,
+        eventMedium,
+        VERTEX_LIGHTS_ALL,
+      );
+    } else {
+      if (!on(scene, 'surfaceScattering')) return radiance;
+      vertex = surfaceVertex(sceneSurface(scene, hit.index), rayOrigin, rayDirection, hit.t);
+    }
+    radiance = add(radiance, mul(weight, vertexDirectLighting(scene, vertex, state)));
+    weight = mul(weight, vertexScatterWeight(vertex));
+    rayDirection = vertexSampleDirection(scene, vertex, [rngNextFloat(state), rngNextFloat(state)]);
+    rayOrigin = vertex.position;
+    const survival = Math.min(maxComponent(weight), 1);
+    if (survival < 1) {
+      if (!(rngNextFloat(state) < survival)) return radiance;
+      weight = scale(weight, 1 / survival);
+    }
+  }
+  scene.stats.capped += 1;
+  return radiance;
+}
+
+export function estimateRadiance(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  state: RngState,
+): Rgb {
+  if (on(scene, 'pathTracing')) return estimatePathTracing(scene, origin, direction, state);
+  if (on(scene, 'volumeScattering') || on(scene, 'surfaceScattering'))
+    return estimateSingleScattering(scene, origin, direction, state);
+  return estimateEmissionAbsorption(scene, origin, direction, state);
+}

@@ -1,0 +1,69 @@
+// The CPU renderer: the float64 twin (src/reference/integrator.ts) over the same pixels
+// and random streams as the kernel shaders/kernels/scene-render.wesl. It is the fallback
+// where there is no WebGPU and the oracle the GPU is tested against; slow (one JS call
+// tree per sample), so it suits small images.
+import { cameraRay } from '../reference/camera.ts';
+import { estimateRadiance, sceneCamera, type SceneData } from '../reference/integrator.ts';
+import { pcgHash, rngNextFloat, rngSeed, type RngState } from '../reference/rng.ts';
+import { PASS_WORDS_PER_PIXEL } from './accumulation.ts';
+import type { PassOutput, PassRenderer } from './render.ts';
+
+/** One sample of pixel (x, y): the kernel's stream rngSeed(i, pcgHash(seed) + s), jitter, ray. */
+export function renderPixelSample(
+  scene: SceneData,
+  x: number,
+  y: number,
+  width: number,
+  seed: number,
+  sampleIndex: number,
+): [number, number, number] {
+  const camera = sceneCamera(scene);
+  const state: RngState = {
+    value: rngSeed(y * width + x, (pcgHash(seed) + sampleIndex) >>> 0),
+  };
+  const jitter: [number, number] = [rngNextFloat(state), rngNextFloat(state)];
+  const ray = cameraRay(camera, [x + jitter[0], y + jitter[1]]);
+  return estimateRadiance(scene, ray.origin, ray.direction, state);
+}
+
+export class CpuSceneRenderer implements PassRenderer {
+  readonly timing = 'cpu' as const;
+  constructor(
+    private readonly scene: SceneData,
+    private readonly width: number,
+    private readonly height: number,
+    private readonly seed: number,
+  ) {}
+
+  renderPass(sampleOffset: number, samples: number): Promise<PassOutput> {
+    const start = performance.now();
+    const pixels = this.width * this.height;
+    const floats = new Float64Array(PASS_WORDS_PER_PIXEL * pixels);
+    for (let y = 0; y < this.height; y++) {
+      for (let x = 0; x < this.width; x++) {
+        const o = PASS_WORDS_PER_PIXEL * (y * this.width + x);
+        this.scene.stats.lookups = 0;
+        this.scene.stats.capped = 0;
+        for (let s = 0; s < samples; s++) {
+          const radiance = renderPixelSample(
+            this.scene,
+            x,
+            y,
+            this.width,
+            this.seed,
+            sampleOffset + s,
+          );
+          for (let c = 0; c < 3; c++) {
+            floats[o + c]! += radiance[c]!;
+            floats[o + 3 + c]! += radiance[c]! ** 2;
+          }
+        }
+        floats[o + 6] = this.scene.stats.lookups;
+        floats[o + 7] = this.scene.stats.capped;
+      }
+    }
+    return Promise.resolve({ floats, words: floats, milliseconds: performance.now() - start });
+  }
+
+  destroy(): void {}
+}

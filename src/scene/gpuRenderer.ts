@@ -1,0 +1,215 @@
+// The GPU renderer: links shaders/kernels/scene-render.wesl with the plan's conditions
+// (or the general ones), uploads the packed scene (storage buffer) and the grid
+// (two r32float 3D textures), and runs passes of the kernel, reading back each pass's
+// sums and its GPU time. Works in the browser and in Node (Dawn) alike: the caller
+// passes the device and the shader library.
+import { withErrorScopes } from '../gpu/errors.ts';
+import { linkKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { GpuTimer } from '../gpu/timing.ts';
+import type { DensityGridData } from '../reference/medium.ts';
+import { PASS_WORDS_PER_PIXEL } from './accumulation.ts';
+import type { PackedScene } from './pack.ts';
+import type { Conditions } from './plan.ts';
+import type { PassOutput, PassRenderer } from './render.ts';
+
+export const SCENE_KERNEL = 'kernels/scene-render.wesl';
+const ENTRY_POINT = 'renderScene';
+
+/** The linked WGSL of the scene kernel for the given conditions. */
+export function linkSceneKernel(library: ShaderLibrary, conditions: Conditions): Promise<string> {
+  const source = library[SCENE_KERNEL];
+  if (source === undefined) return Promise.reject(new Error(`no ${SCENE_KERNEL} in the library`));
+  return linkKernel(library, source, { ...conditions });
+}
+
+const layouts = new WeakMap<GPUDevice, GPUBindGroupLayout>();
+
+function bindGroupLayout(device: GPUDevice): GPUBindGroupLayout {
+  let layout = layouts.get(device);
+  if (!layout) {
+    const texture: GPUTextureBindingLayout = {
+      sampleType: 'unfilterable-float',
+      viewDimension: '3d',
+    };
+    const visibility = GPUShaderStage.COMPUTE;
+    layout = device.createBindGroupLayout({
+      entries: [
+        { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
+        { binding: 1, visibility, buffer: { type: 'storage' } },
+        { binding: 2, visibility, texture },
+        { binding: 3, visibility, texture },
+        { binding: 4, visibility, buffer: { type: 'uniform' } },
+      ],
+    });
+    layouts.set(device, layout);
+  }
+  return layout;
+}
+
+const pipelines = new WeakMap<GPUDevice, Map<string, Promise<GPUComputePipeline>>>();
+
+/** A compute pipeline for linked code, cached per device (compiling is the slow part). */
+function pipelineFor(device: GPUDevice, code: string): Promise<GPUComputePipeline> {
+  let perDevice = pipelines.get(device);
+  if (!perDevice) {
+    perDevice = new Map();
+    pipelines.set(device, perDevice);
+  }
+  let pipeline = perDevice.get(code);
+  if (!pipeline) {
+    const module = device.createShaderModule({ code });
+    const layout = device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout(device)] });
+    pipeline = device.createComputePipelineAsync({
+      layout,
+      compute: { module, entryPoint: ENTRY_POINT },
+    });
+    perDevice.set(code, pipeline);
+    pipeline.catch(() => perDevice.delete(code));
+  }
+  return pipeline;
+}
+
+function volumeTexture(device: GPUDevice, data: DensityGridData): GPUTexture {
+  const [nx, ny, nz] = data.grid.dimensions;
+  const texture = device.createTexture({
+    size: [nx, ny, nz],
+    dimension: '3d',
+    format: 'r32float',
+    usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+  });
+  device.queue.writeTexture(
+    { texture },
+    data.volume as Float32Array<ArrayBuffer>,
+    { bytesPerRow: nx * 4, rowsPerImage: ny },
+    [nx, ny, nz],
+  );
+  return texture;
+}
+
+export class GpuSceneRenderer implements PassRenderer {
+  timing: 'gpu-timestamp' | 'gpu-wall';
+  /** The linked WGSL this renderer runs. */
+  readonly code: string;
+  private readonly resources: (GPUBuffer | GPUTexture)[];
+  private readonly timer: GpuTimer;
+
+  private constructor(
+    private readonly device: GPUDevice,
+    private readonly pipeline: GPUComputePipeline,
+    code: string,
+    private readonly packed: PackedScene,
+    private readonly bindGroup: GPUBindGroup,
+    private readonly output: GPUBuffer,
+    private readonly readBack: GPUBuffer,
+    private readonly uniforms: GPUBuffer,
+    resources: (GPUBuffer | GPUTexture)[],
+  ) {
+    this.code = code;
+    this.resources = resources;
+    this.timer = new GpuTimer(device);
+    this.timing = this.timer.available ? 'gpu-timestamp' : 'gpu-wall';
+  }
+
+  /** Links, compiles (cached) and uploads; the scene must be packed (pack.ts). */
+  static async create(
+    device: GPUDevice,
+    library: ShaderLibrary,
+    packed: PackedScene,
+    conditions: Conditions,
+  ): Promise<GpuSceneRenderer> {
+    const code = await linkSceneKernel(library, conditions);
+    const pipeline = await withErrorScopes(device, 'scene kernel', () => pipelineFor(device, code));
+    const made: (GPUBuffer | GPUTexture)[] = [];
+    const outputBytes = PASS_WORDS_PER_PIXEL * 4 * packed.width * packed.height;
+    const parts = await withErrorScopes(device, 'scene upload', () => {
+      const records = device.createBuffer({
+        size: packed.records.byteLength,
+        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+      });
+      device.queue.writeBuffer(records, 0, packed.records);
+      const output = device.createBuffer({
+        size: outputBytes,
+        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
+      });
+      const readBack = device.createBuffer({
+        size: outputBytes,
+        usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+      });
+      const uniforms = device.createBuffer({
+        size: 32,
+        usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
+      });
+      const density = volumeTexture(device, packed.density);
+      const majorant = volumeTexture(device, packed.majorant);
+      made.push(records, output, readBack, uniforms, density, majorant);
+      const bindGroup = device.createBindGroup({
+        layout: bindGroupLayout(device),
+        entries: [
+          { binding: 0, resource: { buffer: records } },
+          { binding: 1, resource: { buffer: output } },
+          { binding: 2, resource: density.createView() },
+          { binding: 3, resource: majorant.createView() },
+          { binding: 4, resource: { buffer: uniforms } },
+        ],
+      });
+      return { bindGroup, output, readBack, uniforms };
+    }).catch((error: unknown) => {
+      for (const r of made) r.destroy();
+      throw error;
+    });
+    return new GpuSceneRenderer(
+      device,
+      pipeline,
+      code,
+      packed,
+      parts.bindGroup,
+      parts.output,
+      parts.readBack,
+      parts.uniforms,
+      made,
+    );
+  }
+
+  async renderPass(sampleOffset: number, samples: number): Promise<PassOutput> {
+    const { device, packed } = this;
+    const pass = new Uint32Array([
+      sampleOffset,
+      samples,
+      packed.seed,
+      packed.width,
+      packed.height,
+      0,
+      0,
+      0,
+    ]);
+    await withErrorScopes(device, 'scene pass', () => {
+      device.queue.writeBuffer(this.uniforms, 0, pass);
+      const encoder = device.createCommandEncoder();
+      const computePass = encoder.beginComputePass(this.timer.passDescriptor());
+      computePass.setPipeline(this.pipeline);
+      computePass.setBindGroup(0, this.bindGroup);
+      computePass.dispatchWorkgroups(Math.ceil(packed.width / 8), Math.ceil(packed.height / 8));
+      computePass.end();
+      this.timer.resolve(encoder);
+      encoder.copyBufferToBuffer(this.output, 0, this.readBack, 0, this.output.size);
+      device.queue.submit([encoder.finish()]);
+    });
+    const start = performance.now();
+    await this.readBack.mapAsync(GPUMapMode.READ);
+    const wallMs = performance.now() - start;
+    const copy = this.readBack.getMappedRange().slice(0);
+    this.readBack.unmap();
+    const gpuMs = await this.timer.read();
+    return {
+      floats: new Float32Array(copy),
+      words: new Uint32Array(copy),
+      milliseconds: gpuMs ?? wallMs,
+      timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+    };
+  }
+
+  destroy(): void {
+    this.timer.destroy();
+    for (const r of this.resources) r.destroy();
+  }
+}

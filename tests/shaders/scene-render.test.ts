@@ -1,0 +1,141 @@
+// The scene kernel (shaders/kernels/scene-render.wesl + shaders/integrator.wesl) on the
+// GPU through Dawn, against the float64 twin and against closed forms:
+//  - physics.md §5 (single scattering in a homogeneous slab) and a point light seen through a
+//    homogeneous medium (equiangular sampling vs quadrature) on the GPU;
+//  - GPU vs twin images on the same samples for one scene per integrator (per-pixel
+//    z-scores from both standard errors, tests/support/sceneRender.ts), including the
+//    general kernel; f32 rounding makes some paths diverge, so agreement is statistical;
+//  - the white furnace on the GPU: every pixel equals the environment;
+//  - specialized vs general kernels on the GPU (different code, different random numbers).
+// Images are small (8×8, a few dozen samples) because SwiftShader runs WebGPU on the CPU;
+// each distinct kernel is compiled once (the pipeline cache is per device).
+import { beforeAll, describe, it } from 'vitest';
+import type { ResolvedScene } from '../../src/scene/load.ts';
+import { renderScene, type SceneRenderOptions } from '../../src/scene/renderScene.ts';
+import {
+  pointLightExact,
+  pointLightScene,
+  slabExact,
+  slabScene,
+} from '../support/analyticScenes.ts';
+import { nodeDevice } from '../support/nodeGpu.ts';
+import {
+  estimateOf,
+  exampleScene,
+  expectAgreement,
+  expectMatchesExact,
+  sceneFrom,
+  type ImageEstimate,
+} from '../support/sceneRender.ts';
+import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
+
+let device: GPUDevice;
+beforeAll(async () => {
+  device = await nodeDevice();
+}, 60_000);
+
+const gpu = async (
+  scene: ResolvedScene,
+  options: SceneRenderOptions = {},
+): Promise<ImageEstimate> =>
+  estimateOf(await renderScene(scene, { kind: 'gpu', device, library: SHADER_LIBRARY }, options));
+const cpu = async (
+  scene: ResolvedScene,
+  options: SceneRenderOptions = {},
+): Promise<ImageEstimate> => estimateOf(await renderScene(scene, { kind: 'cpu' }, options));
+
+const SMALL = { image: { width: 8, height: 8 }, samplesPerPixel: 32 };
+// Linking and compiling a kernel in SwiftShader takes seconds on a loaded machine.
+const GPU_TIMEOUT = 180_000;
+
+describe('scene kernel on the GPU', () => {
+  it(
+    'physics.md §5: the specialized kernel matches the homogeneous-slab closed form',
+    async () => {
+      const estimate = await gpu(await sceneFrom(slabScene('homogeneous')));
+      // f32 allowance: exp and divisions of a few ULP each, a few hundred in a sample.
+      expectMatchesExact(estimate, (_, c) => slabExact(c), 'slab on the GPU', 2e-5 * slabExact(0));
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'equiangular sampling for a point light: GPU = quadrature and GPU = twin',
+    async () => {
+      const scene = await sceneFrom({ ...pointLightScene, samplesPerPixel: 1024 });
+      const estimate = await gpu(scene);
+      expectMatchesExact(
+        estimate,
+        (_, c) => pointLightExact(c),
+        'point light on the GPU',
+        2e-5 * pointLightExact(0),
+      );
+      expectAgreement(estimate, await cpu(scene), 'point light, GPU vs twin');
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'single scattering in a grid with spot and point lights over a floor: GPU = twin',
+    async () => {
+      const scene = await exampleScene('smoke-spotlight', SMALL);
+      expectAgreement(await gpu(scene), await cpu(scene), 'smoke-spotlight');
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'emission–absorption in a grid: GPU = twin, and the specialized kernel = the general one',
+    async () => {
+      const scene = await exampleScene('emissive-smoke', SMALL);
+      const specialized = await gpu(scene);
+      expectAgreement(specialized, await cpu(scene), 'emissive-smoke, GPU vs twin');
+      expectAgreement(
+        specialized,
+        await gpu(scene, { kernel: 'general', spp: 64 }),
+        'emissive-smoke, specialized vs general',
+      );
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'path tracing, white furnace: GPU = twin, and every pixel equals the environment',
+    async () => {
+      const scene = await exampleScene('white-furnace', SMALL);
+      const estimate = await gpu(scene);
+      expectMatchesExact(estimate, () => 1, 'white furnace on the GPU', 1e-5);
+      expectAgreement(estimate, await cpu(scene), 'white furnace, GPU vs twin');
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'the general kernel (path tracer, grid, sun, sky, floor): GPU = twin',
+    async () => {
+      const scene = await exampleScene('cloud-sky', { ...SMALL, samplesPerPixel: 16 });
+      expectAgreement(
+        await gpu(scene, { kernel: 'general' }),
+        await cpu(scene, { kernel: 'general' }),
+        'cloud-sky, general kernel',
+      );
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'specialized (single scattering, Beer) vs general (path tracer at order 1, tracking) on the §5 slab',
+    async () => {
+      const scene = await sceneFrom(slabScene('homogeneous'));
+      const general = await gpu(scene, { kernel: 'general', spp: 256 });
+      expectAgreement(await gpu(scene), general, 'slab, specialized vs general');
+      expectMatchesExact(
+        general,
+        (_, c) => slabExact(c),
+        'slab, general kernel',
+        2e-5 * slabExact(0),
+      );
+    },
+    GPU_TIMEOUT,
+  );
+});
