@@ -1,10 +1,12 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=transmittance,estimators,widgets runs a subset.
+// --only=transmittance,estimators,subsurface,widgets,scenes runs a subset.
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
 import { benchEstimators } from './estimators.ts';
+import { benchScenes } from './scenes.ts';
+import { benchSubsurface } from './subsurface.ts';
 import { benchTransmittance } from './transmittance.ts';
 import { benchWidgets } from './widgets.ts';
 import { printTable, saveTables, type BenchTable } from './table.ts';
@@ -28,7 +30,25 @@ if (wanted('estimators'))
       repeats: 5,
     }),
   );
+if (wanted('subsurface'))
+  tables.push(
+    ...(await benchSubsurface(device, {
+      gpuPhotons: quick ? 1 << 16 : 1 << 20,
+      cpuPhotons: quick ? 1 << 13 : 1 << 16,
+      scenePhotons: quick ? 1 << 14 : 1 << 17,
+      repeats: 5,
+    })),
+  );
 if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
+if (wanted('scenes'))
+  tables.push(
+    await benchScenes(device, {
+      size: quick ? 24 : 48,
+      spp: quick ? 16 : 64,
+      samplesPerPass: quick ? 4 : 8,
+      cpuSpp: quick ? 1 : 4,
+    }),
+  );
 for (const table of tables) printTable(table);
 const path = new URL('./results/latest.json', import.meta.url).pathname;
 saveTables(path, tables, {

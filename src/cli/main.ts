@@ -2,7 +2,8 @@
 // library on a list of inputs, either the WGSL function on the GPU (Dawn in Node;
 // SwiftShader where there is no GPU) or its float64 twin in src/reference/ on the
 // CPU; `list` shows the library's modules and functions and which backends can
-// call each. Run it with `npm run cli -- eval …` (scripts/gpu-env.sh sets up Dawn).
+// call each; `render` renders a scene file (src/cli/render.ts). Run it with
+// `npm run cli -- eval …` (scripts/gpu-env.sh sets up Dawn).
 //
 // The GPU backend reads the function's WGSL signature from the linked library with
 // the WESL parser and evaluates it through src/gpu/functionEvaluator.ts, the code the
@@ -21,6 +22,8 @@ import {
 } from '../gpu/functionEvaluator.ts';
 import type { ShaderLibrary } from '../gpu/link.ts';
 import { loadShaderLibrary } from '../gpu/shaderSourcesNode.ts';
+import { slabCommand } from './slab.ts';
+import { RENDER_HELP, RENDER_SYNOPSIS, RenderInputError, runRender } from './render.ts';
 
 const SHADERS_DIRECTORY = fileURLToPath(new URL('../../shaders', import.meta.url));
 const REFERENCE_DIRECTORY = fileURLToPath(new URL('../reference', import.meta.url));
@@ -28,6 +31,8 @@ const REFERENCE_DIRECTORY = fileURLToPath(new URL('../reference', import.meta.ur
 const USAGE = `Usage:
   scatterbook eval MODULE.FUNCTION --args JSON [--backend gpu|cpu] [--json]
   scatterbook list [--json]
+  scatterbook slab --sigma-a A --sigma-s S --thickness D|inf [--g G] [--eta N] … (slab --help)
+${RENDER_SYNOPSIS}
 
 eval    Calls a shader library function once per inner array of --args, e.g.
           scatterbook eval transmittance.transmittanceHomogeneous --args '[[1, 2], [0.5, 4]]'
@@ -38,7 +43,10 @@ eval    Calls a shader library function once per inner array of --args, e.g.
           given (objects for structs, {"value": n} for an RNG state).
 list    Lists every module, its functions' WGSL signatures and the backends that can
         call each.
---json  Prints JSON: for eval { "function", "backend", "results": [one per call] }.`;
+slab    Monte Carlo photon transport through a slab or half-space (physics.md §7):
+          R_d, T_t with standard errors and the radial profile; see slab --help.
+--json  Prints JSON: for eval { "function", "backend", "results": [one per call] }.
+${RENDER_HELP}`;
 
 /** Wrong command line or input: exit status 2. */
 class UsageError extends Error {}
@@ -319,6 +327,8 @@ async function runList(json: boolean): Promise<void> {
 }
 
 async function main(argv: readonly string[]): Promise<number> {
+  // `slab` has options of its own (src/cli/slab.ts).
+  if (argv[0] === 'slab') return slabCommand(argv.slice(1));
   let parsed;
   try {
     parsed = parseArgs({
@@ -329,6 +339,12 @@ async function main(argv: readonly string[]): Promise<number> {
         backend: { type: 'string' },
         json: { type: 'boolean' },
         help: { type: 'boolean', short: 'h' },
+        out: { type: 'string' },
+        png: { type: 'string' },
+        spp: { type: 'string' },
+        stats: { type: 'string' },
+        kernel: { type: 'string' },
+        exposure: { type: 'string' },
       },
     });
   } catch (error) {
@@ -344,13 +360,14 @@ async function main(argv: readonly string[]): Promise<number> {
   try {
     if (command === 'eval') await runEval(positionals, values);
     else if (command === 'list') await runList(values.json ?? false);
+    else if (command === 'render') await runRender(positionals, values);
     else
       throw new UsageError(
         command === undefined ? 'no command' : `unknown command ${JSON.stringify(command)}`,
       );
     return 0;
   } catch (error) {
-    if (error instanceof UsageError) {
+    if (error instanceof UsageError || error instanceof RenderInputError) {
       console.error(`scatterbook: ${error.message}\n\nRun scatterbook --help for usage.`);
       return 2;
     }
