@@ -25,4 +25,24 @@ export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () 
     const module = await import('./delta-tracking/element.ts');
     return { define: module.defineDeltaTracking };
   },
+  'dipole-profile': async () => {
+    const module = await import('./dipole-profile/element.ts');
+    return { define: module.defineDipoleProfile };
+  },
+  'inverse-render': async () => {
+    const module = await import('./inverse-render/element.ts');
+    return { define: module.defineInverseRender };
+  },
+  'transfer-function': async () => {
+    const module = await import('./transfer-function/element.ts');
+    return { define: module.defineTransferFunction };
+  },
+  'single-scatter': async () => {
+    const module = await import('./single-scatter/element.ts');
+    return { define: module.defineSingleScatter };
+  },
+  'volume-path-tracer': async () => {
+    const module = await import('./volume-path-tracer/element.ts');
+    return { define: module.defineVolumePathTracer };
+  },
 };

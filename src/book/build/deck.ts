@@ -86,7 +86,7 @@ export const DECK: readonly DeckSlide[] = [
     widget: 'hg-lobe',
     attributes: { g: '0.6', compare: 'isotropic', scale: 'log', samples: '16', seed: '1' },
     caption:
-      'Most media scatter forward. On a log radius the backward tail shows; the χ² test checks the sampler against the closed-form CDF.',
+      'Most media scatter forward. On a log radius the backward tail shows; turn the 3D lobe with the arrow keys. The χ² test and the error-vs-time sweep (L1 ∝ N^−½) check the sampler against the closed form.',
     chapter: '03-phase-functions-and-in-scattering',
   },
   {
@@ -103,6 +103,14 @@ export const DECK: readonly DeckSlide[] = [
     attributes: { 'sun-elevation': '2', scattering: 'on', steps: '32', exposure: '1' },
     caption:
       'At 2° the sunlight crosses about 19 times the air of the vertical path, and Beer’s law removes the blue first: T_sun ≈ (0.42, 0.13, 0.007).',
+    chapter: '03-phase-functions-and-in-scattering',
+  },
+  {
+    title: 'The sky’s accuracy against its cost',
+    widget: 'rayleigh-sky',
+    attributes: { 'sun-elevation': '20', scattering: 'on', steps: '8', exposure: '0' },
+    caption:
+      'Run the sweep: the error falls as N⁻², but each view sample also marches N/4 sun samples, so against GPU time it falls more slowly, with a slope between −2 and −1.',
     chapter: '03-phase-functions-and-in-scattering',
   },
   {
@@ -145,12 +153,118 @@ export const DECK: readonly DeckSlide[] = [
     chapter: '06-unbiased-transmittance',
   },
   {
+    title: 'Five estimators at equal samples and equal time',
+    widget: 'delta-tracking',
+    attributes: { view: 'compare', estimator: 'delta', spp: '8', majorant: 'tight', seed: '0' },
+    caption:
+      'Top row: the same spp for all five; bottom row: the same GPU time as delta tracking at that spp. exp(−τ̂) stays biased however many samples it gets; unbiased ray marching wins by orders of magnitude. Sweep all five: four curves fall with slope −½, one levels off.',
+    chapter: '06-unbiased-transmittance',
+  },
+  {
     title: 'A majorant that is too low',
     widget: 'delta-tracking',
     attributes: { estimator: 'delta', spp: '16', majorant: 'low', seed: '0' },
     caption:
       'With σ̄ below σt, delta tracking accepts too few collisions and the image is too bright: E[X] = exp(−∫min(σt, σ̄)). Ratio tracking with the same majorant stays unbiased, at a higher variance.',
     chapter: '06-unbiased-transmittance',
+  },
+  {
+    title: 'Transfer functions: from Hounsfield units to light',
+    widget: 'transfer-function',
+    attributes: { step: '1', termination: 'on', colormap: 'tissue' },
+    caption:
+      'A CT head phantom in HU, ray cast with emission–absorption. Drag the opacity points over the histogram or press 1–4 for presets; drag the image to orbit. The error image shows the wood-grain rings of one-voxel steps.',
+    chapter: '07-volume-visualization',
+  },
+  {
+    title: 'Early ray termination: the skin surface',
+    widget: 'transfer-function',
+    attributes: {
+      colormap: 'tissue',
+      panel: 'steps',
+      'hu-2': '-700',
+      'hu-3': '-450',
+      'opacity-3': '0.4',
+      'hu-4': '100',
+      'opacity-4': '0.5',
+      'hu-5': '1000',
+      'opacity-5': '0.6',
+      'hu-6': '3071',
+      'opacity-6': '0.6',
+    },
+    caption:
+      'Rays stop once T < ε, a few voxels behind the skin: the steps image shows it. The bias stays below ε·L_max; switch termination off and compare the steps and the GPU time.',
+    chapter: '07-volume-visualization',
+  },
+  {
+    title: 'Inverse rendering: fit a grid to photographs',
+    widget: 'inverse-render',
+    attributes: { grid: '32', views: '8', regularizer: 'none' },
+    caption:
+      'Press Start: Adam fits 131,072 grid parameters to eight images with the gradient of the ray marcher. The training loss falls tenfold within about a hundred iterations; the held-out view from above shows what eight views pin down.',
+    chapter: '08-inverse-volume-rendering',
+  },
+  {
+    title: 'Three views: low loss, wrong volume',
+    widget: 'inverse-render',
+    attributes: { grid: '32', views: '3', regularizer: 'none' },
+    caption:
+      'With three cameras the fit explains its images almost perfectly, yet the held-out view stays wrong: many volumes produce the same three pictures. The loss curve and the held-out error part ways.',
+    chapter: '08-inverse-volume-rendering',
+  },
+  {
+    title: 'Single scattering: a shaft of shadow in the fog',
+    widget: 'single-scatter',
+    attributes: { light: 'spot', medium: 'fog', occluder: 'sphere', spp: '256' },
+    caption:
+      'Every visible point of the fog sends a shadow ray to the spot light; where the sphere blocks them, a dark cone cuts through the beam. The table is the plan: what the kernel compiled, how, and why; the readouts time it against the general kernel.',
+    chapter: '09-single-scattering',
+  },
+  {
+    title: 'Switch scattering off: the plan shrinks',
+    widget: 'single-scatter',
+    attributes: {
+      scattering: 'off',
+      emission: 'on',
+      albedo: '0.5',
+      floor: 'off',
+      occluder: 'none',
+    },
+    caption:
+      'With σs = 0 and no surfaces nothing can scatter light towards the eye: the planner skips in-scattering, phase functions, shadow rays and lights, and the kernel is an emission–absorption integral in closed form.',
+    chapter: '09-single-scattering',
+  },
+  {
+    title: 'Clouds are white: single versus multiple scattering',
+    widget: 'volume-path-tracer',
+    attributes: { scene: 'sphere', albedo: '0.99', g: '0.8', density: '10', spp: '4' },
+    caption:
+      'The same cloud rendered with one scattering event and with all of them. At albedo 0.99 most of the light that leaves the cloud has scattered many times: single scattering keeps only a fraction of it and the cloud turns grey.',
+    chapter: '10-multiple-scattering',
+  },
+  {
+    title: 'Path tracing converges as one over the square root of time',
+    widget: 'volume-path-tracer',
+    attributes: { scene: 'cloud', albedo: '0.98', g: '0.7', density: '16', spp: '8' },
+    caption:
+      'Both images refine progressively; once the converged reference is ready, their relative error is plotted against accumulated GPU time on log–log axes. Both fall with slope −½; the path tracer pays more time per sample for its longer paths.',
+    chapter: '10-multiple-scattering',
+  },
+  {
+    title: 'Skin: the dipole against Monte Carlo',
+    widget: 'dipole-profile',
+    attributes: { material: 'skin1' },
+    caption:
+      'R_d(r) per channel on log–log axes: red light travels millimetres, blue barely one. The dipole follows the Monte Carlo far from the beam and misses it within a mean free path; press More photons and watch the error bars shrink.',
+    chapter: '11-subsurface-scattering',
+  },
+  {
+    title: 'Colour bleeding: marble and ketchup',
+    widget: 'dipole-profile',
+    attributes: { material: 'ketchup', exposure: '1' },
+    caption:
+      'Ketchup absorbs green and blue within a millimetre and lets red wander a centimetre: the glow is red. Press 2 for marble, whose three channels spread alike into a broad white halo.',
+    chapter: '11-subsurface-scattering',
   },
 ];
 

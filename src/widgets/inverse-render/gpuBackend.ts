@@ -1,0 +1,324 @@
+// GPU backend of <sb-inverse-render>: keeps the grid, Adam's moments, the gradient,
+// the targets, the cameras and the loss history in GPU buffers for the whole run,
+// and records K iterations (lossGradient, regularize, adam, advance; see
+// shaders/kernels/inverse-render.wesl) into one timed compute pass. Only the loss
+// history and, now and then, the rendered views are read back. The same class runs
+// in the browser and, through Dawn, in the tests.
+import type { Camera } from '../../reference/camera.ts';
+import { withErrorScopes } from '../../gpu/errors.ts';
+import { GpuTimer } from '../../gpu/timing.ts';
+import {
+  BACKGROUND,
+  MAX_ITERATIONS,
+  effectiveBatch,
+  initialGrid,
+  problemCameras,
+  type Hyper,
+  type Problem,
+  type TrainReport,
+  type Trainer,
+  type ViewAngle,
+} from './model.ts';
+
+export const KERNEL = 'kernels/inverse-render.wesl';
+const WORKGROUP = 64;
+/** stats[0] iterations done, stats[1] dropped atomic adds, then the loss history. */
+const STATS_LOSS_OFFSET = 2;
+const PARAMS_BYTES = 64;
+const CAMERA_FLOATS = 20;
+const ENTRY_POINTS = [
+  'renderTarget',
+  'renderField',
+  'lossGradient',
+  'regularize',
+  'adam',
+  'advance',
+] as const;
+type EntryPoint = (typeof ENTRY_POINTS)[number];
+
+/** The camera structs as the kernel reads them (80 bytes each, camera.wesl's layout). */
+export function packCameras(cameras: readonly Camera[]): Float32Array<ArrayBuffer> {
+  const data = new Float32Array(CAMERA_FLOATS * cameras.length);
+  const words = new Uint32Array(data.buffer);
+  cameras.forEach((camera, i) => {
+    const o = CAMERA_FLOATS * i;
+    data.set(camera.position, o);
+    words[o + 3] = camera.projection;
+    data.set(camera.forward, o + 4);
+    data.set(camera.right, o + 8);
+    data.set(camera.up, o + 12);
+    data.set(camera.halfExtent, o + 16);
+    data.set(camera.imageSize, o + 18);
+  });
+  return data;
+}
+
+export class InverseTrainerGpu implements Trainer {
+  private readonly buffers: GPUBuffer[] = [];
+  private readonly uniform: GPUBuffer;
+  private readonly field: GPUBuffer;
+  private readonly moments: GPUBuffer;
+  private readonly gradient: GPUBuffer;
+  private readonly targets: GPUBuffer;
+  private readonly stats: GPUBuffer;
+  private readonly image: GPUBuffer;
+  private readonly cameras: GPUBuffer;
+  private readonly bindGroup: GPUBindGroup;
+  private readonly pipelines = new Map<EntryPoint, GPUComputePipeline>();
+  private readonly voxels: number;
+  private readonly trainPixels: number;
+  private readonly allPixels: number;
+  iteration = 0;
+
+  private constructor(
+    private readonly device: GPUDevice,
+    code: string,
+    public problem: Problem,
+  ) {
+    const n = problem.resolution;
+    this.voxels = n ** 3;
+    const pixels = problem.size * problem.size;
+    this.trainPixels = problem.trainViews * pixels;
+    this.allPixels = problem.views.length * pixels;
+    const storage = GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | GPUBufferUsage.COPY_SRC;
+    const make = (bytes: number, usage = storage): GPUBuffer => {
+      const buffer = device.createBuffer({ size: Math.max(16, bytes), usage });
+      this.buffers.push(buffer);
+      return buffer;
+    };
+    this.uniform = make(PARAMS_BYTES, GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST);
+    this.field = make(16 * this.voxels);
+    this.moments = make(32 * this.voxels);
+    this.gradient = make(16 * this.voxels);
+    this.targets = make(12 * this.allPixels);
+    this.cameras = make(4 * CAMERA_FLOATS * problem.views.length);
+    const cameras = this.cameras;
+    this.stats = make(4 * (STATS_LOSS_OFFSET + MAX_ITERATIONS));
+    this.image = make(12 * this.allPixels);
+
+    const layout = device.createBindGroupLayout({
+      entries: [
+        { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
+        ...[1, 2, 3, 4, 6, 7].map((binding) => ({
+          binding,
+          visibility: GPUShaderStage.COMPUTE,
+          buffer: { type: 'storage' as const },
+        })),
+        { binding: 5, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'read-only-storage' } },
+      ],
+    });
+    const module = device.createShaderModule({ code });
+    const pipelineLayout = device.createPipelineLayout({ bindGroupLayouts: [layout] });
+    for (const entryPoint of ENTRY_POINTS)
+      this.pipelines.set(
+        entryPoint,
+        device.createComputePipeline({ layout: pipelineLayout, compute: { module, entryPoint } }),
+      );
+    this.bindGroup = device.createBindGroup({
+      layout,
+      entries: [
+        this.uniform,
+        this.field,
+        this.moments,
+        this.gradient,
+        this.targets,
+        cameras,
+        this.stats,
+        this.image,
+      ].map((buffer, binding) => ({ binding, resource: { buffer } })),
+    });
+    device.queue.writeBuffer(cameras, 0, packCameras(problemCameras(problem)));
+    const initial = initialGrid(n, problem.seed).values;
+    device.queue.writeBuffer(this.field, 0, new Float32Array(initial));
+  }
+
+  /** Builds the buffers, uploads the initial grid and cameras, and renders the targets. */
+  static async create(
+    device: GPUDevice,
+    code: string,
+    problem: Problem,
+  ): Promise<InverseTrainerGpu> {
+    const trainer = await withErrorScopes(
+      device,
+      'inverse-render setup',
+      () => new InverseTrainerGpu(device, code, problem),
+    );
+    trainer.renderTargets();
+    return trainer;
+  }
+
+  private renderTargets(): void {
+    this.writeParams({ learningRate: 0, regularizer: 0, regularizerWeight: 0, batch: 1 });
+    const encoder = this.device.createCommandEncoder();
+    const pass = encoder.beginComputePass();
+    this.dispatch(pass, 'renderTarget', this.allPixels);
+    pass.end();
+    this.device.queue.submit([encoder.finish()]);
+  }
+
+  async setNovelView(view: ViewAngle): Promise<void> {
+    const views = [...this.problem.views.slice(0, this.problem.trainViews), view];
+    this.problem = { ...this.problem, views };
+    await withErrorScopes(this.device, 'inverse-render held-out view', () => {
+      this.device.queue.writeBuffer(this.cameras, 0, packCameras(problemCameras(this.problem)));
+      this.renderTargets();
+    });
+  }
+
+  private writeParams(hyper: Hyper): void {
+    const buffer = new ArrayBuffer(PARAMS_BYTES);
+    const u32 = new Uint32Array(buffer);
+    const f32 = new Float32Array(buffer);
+    const p = this.problem;
+    u32[0] = p.resolution;
+    u32[1] = p.size;
+    u32[2] = p.trainViews;
+    u32[3] = p.steps;
+    u32[4] = p.views.length;
+    u32[5] = hyper.regularizer;
+    u32[6] = MAX_ITERATIONS;
+    u32[7] = this.batchSize(hyper);
+    f32.set(BACKGROUND, 8);
+    f32[11] = 1 / (3 * this.batchSize(hyper));
+    f32[12] = hyper.learningRate;
+    f32[13] = hyper.regularizerWeight / this.voxels;
+    u32[14] = p.seed;
+    this.device.queue.writeBuffer(this.uniform, 0, buffer);
+  }
+
+  /** Rays per iteration: the requested batch, at most every training pixel. */
+  private batchSize(hyper: Hyper): number {
+    return effectiveBatch(hyper, this.trainPixels);
+  }
+
+  private dispatch(pass: GPUComputePassEncoder, entryPoint: EntryPoint, threads: number): void {
+    pass.setPipeline(this.pipelines.get(entryPoint)!);
+    pass.setBindGroup(0, this.bindGroup);
+    pass.dispatchWorkgroups(Math.max(1, Math.ceil(threads / WORKGROUP)));
+  }
+
+  /** Runs `count` iterations in one pass (capped by the loss history) and reads their losses. */
+  async train(count: number, hyper: Hyper): Promise<TrainReport> {
+    const iterations = Math.max(0, Math.min(count, MAX_ITERATIONS - this.iteration));
+    const first = this.iteration;
+    const timer = new GpuTimer(this.device);
+    const readBytes = 4 * (STATS_LOSS_OFFSET + Math.max(iterations, 1) + first);
+    const readBack = this.device.createBuffer({
+      size: readBytes,
+      usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+    });
+    // Wall time from before the submit: popping the error scopes may already wait for the GPU.
+    const start = performance.now();
+    try {
+      await withErrorScopes(this.device, 'inverse-render iterations', () => {
+        this.writeParams(hyper);
+        const encoder = this.device.createCommandEncoder();
+        const pass = encoder.beginComputePass(timer.passDescriptor());
+        for (let k = 0; k < iterations; k++) {
+          this.dispatch(pass, 'lossGradient', this.batchSize(hyper));
+          if (hyper.regularizer !== 0 && hyper.regularizerWeight !== 0)
+            this.dispatch(pass, 'regularize', this.voxels);
+          this.dispatch(pass, 'adam', this.voxels);
+          this.dispatch(pass, 'advance', 1);
+        }
+        pass.end();
+        timer.resolve(encoder);
+        encoder.copyBufferToBuffer(this.stats, 0, readBack, 0, readBytes);
+        this.device.queue.submit([encoder.finish()]);
+      });
+      await readBack.mapAsync(GPUMapMode.READ);
+      const wallMs = performance.now() - start;
+      const words = new Uint32Array(readBack.getMappedRange().slice(0));
+      readBack.unmap();
+      const losses = new Float32Array(words.buffer, 4 * (STATS_LOSS_OFFSET + first), iterations);
+      this.iteration = words[0]!;
+      return {
+        losses: losses.slice(),
+        iteration: this.iteration,
+        dropped: words[1]!,
+        gpuMs: await timer.read(),
+        wallMs,
+      };
+    } finally {
+      timer.destroy();
+      readBack.destroy();
+    }
+  }
+
+  private async read(source: GPUBuffer, bytes: number): Promise<ArrayBuffer> {
+    const readBack = this.device.createBuffer({
+      size: bytes,
+      usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+    });
+    try {
+      const encoder = this.device.createCommandEncoder();
+      encoder.copyBufferToBuffer(source, 0, readBack, 0, bytes);
+      this.device.queue.submit([encoder.finish()]);
+      await readBack.mapAsync(GPUMapMode.READ);
+      return readBack.getMappedRange().slice(0);
+    } finally {
+      if (readBack.mapState === 'mapped') readBack.unmap();
+      readBack.destroy();
+    }
+  }
+
+  /** The target images of every view (3 floats per pixel, views in order). */
+  async readTargets(): Promise<Float32Array> {
+    return new Float32Array(await this.read(this.targets, 12 * this.allPixels));
+  }
+
+  /** Renders the current grid from every view (training, then held-out) and reads it back. */
+  async render(): Promise<{ image: Float32Array; gpuMs: number | null }> {
+    const timer = new GpuTimer(this.device);
+    try {
+      const encoder = this.device.createCommandEncoder();
+      const pass = encoder.beginComputePass(timer.passDescriptor());
+      this.dispatch(pass, 'renderField', this.allPixels);
+      pass.end();
+      timer.resolve(encoder);
+      this.device.queue.submit([encoder.finish()]);
+      const image = new Float32Array(await this.read(this.image, 12 * this.allPixels));
+      return { image, gpuMs: await timer.read() };
+    } finally {
+      timer.destroy();
+    }
+  }
+
+  /** The current raw parameters, 4 per voxel. */
+  async readField(): Promise<Float32Array> {
+    return new Float32Array(await this.read(this.field, 16 * this.voxels));
+  }
+
+  /**
+   * For the tests: ∂L/∂θ at the current parameters (data term, plus the regularizer
+   * of `hyper`) and the data loss, without updating anything. The gradient buffer and
+   * the loss slot are cleared again afterwards.
+   */
+  async lossAndGradient(hyper: Hyper): Promise<{ loss: number; gradient: Float32Array }> {
+    this.writeParams(hyper);
+    const encoder = this.device.createCommandEncoder();
+    const pass = encoder.beginComputePass();
+    this.dispatch(pass, 'lossGradient', this.batchSize(hyper));
+    if (hyper.regularizer !== 0 && hyper.regularizerWeight !== 0)
+      this.dispatch(pass, 'regularize', this.voxels);
+    pass.end();
+    this.device.queue.submit([encoder.finish()]);
+    const gradient = new Float32Array(await this.read(this.gradient, 16 * this.voxels));
+    const slot = 4 * (STATS_LOSS_OFFSET + this.iteration);
+    const stats = new Float32Array(await this.read(this.stats, slot + 4));
+    const clear = this.device.createCommandEncoder();
+    clear.clearBuffer(this.gradient);
+    clear.clearBuffer(this.stats, slot, 4);
+    this.device.queue.submit([clear.finish()]);
+    return { loss: stats[STATS_LOSS_OFFSET + this.iteration]!, gradient };
+  }
+
+  /** For the tests: replaces the raw parameters (4 per voxel). */
+  writeField(values: Float32Array<ArrayBuffer>): void {
+    this.device.queue.writeBuffer(this.field, 0, values);
+  }
+
+  destroy(): void {
+    for (const buffer of this.buffers) buffer.destroy();
+  }
+}

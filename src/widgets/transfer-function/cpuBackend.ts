@@ -1,0 +1,139 @@
+// The two ways <sb-transfer-function> renders rows of its image, behind one
+// interface (FrameRenderer): the GPU kernel (gpuBackend.ts, bands read back into
+// the full image) and, without WebGPU, the float64 twin in model.ts at
+// CPU_SIZE² pixels. Also the painting of images into 2D canvases.
+import { timingLabel } from '../base/imageKernel.ts';
+import type { Rgb } from '../base/imagePanel.ts';
+import type { VolumeRendererGpu } from './gpuBackend.ts';
+import {
+  CPU_SIZE,
+  emptyImage,
+  IMAGE_SIZE,
+  renderRowsCpu,
+  type FrameInputs,
+  type VolumeImage,
+} from './model.ts';
+
+export interface RowsCost {
+  milliseconds: number;
+  /** How the time was measured, for the readout. */
+  how: string;
+}
+
+export interface FrameRenderer {
+  readonly kind: 'gpu' | 'cpu';
+  /** Image size (pixels per side). */
+  readonly size: number;
+  /** A blank image of this renderer's size and precision. */
+  blank(): VolumeImage;
+  /** Renders rows [rowStart, rowEnd) into `image` and adds their statistics. */
+  renderInto(
+    image: VolumeImage,
+    inputs: FrameInputs,
+    stepVoxels: number,
+    threshold: number,
+    rowStart: number,
+    rowEnd: number,
+  ): Promise<RowsCost>;
+}
+
+/** The float64 twin on the CPU at CPU_SIZE² pixels, timed by the wall clock. */
+export class CpuRenderer implements FrameRenderer {
+  readonly kind = 'cpu';
+  readonly size = CPU_SIZE;
+
+  blank(): VolumeImage {
+    return emptyImage(this.size, new Float64Array(3 * this.size * this.size));
+  }
+
+  renderInto(
+    image: VolumeImage,
+    inputs: FrameInputs,
+    stepVoxels: number,
+    threshold: number,
+    rowStart: number,
+    rowEnd: number,
+  ): Promise<RowsCost> {
+    const start = performance.now();
+    renderRowsCpu(image, inputs, stepVoxels, threshold, rowStart, rowEnd);
+    return Promise.resolve({ milliseconds: performance.now() - start, how: timingLabel('cpu') });
+  }
+}
+
+/** The GPU kernel at IMAGE_SIZE² pixels; each call is one dispatch, timed on the GPU. */
+export class GpuRenderer implements FrameRenderer {
+  readonly kind = 'gpu';
+  readonly size = IMAGE_SIZE;
+
+  constructor(private readonly gpu: VolumeRendererGpu) {}
+
+  blank(): VolumeImage {
+    return emptyImage(this.size, new Float32Array(3 * this.size * this.size));
+  }
+
+  async renderInto(
+    image: VolumeImage,
+    inputs: FrameInputs,
+    stepVoxels: number,
+    threshold: number,
+    rowStart: number,
+    rowEnd: number,
+  ): Promise<RowsCost> {
+    const band = await this.gpu.renderRows({
+      inputs,
+      size: this.size,
+      stepVoxels,
+      threshold,
+      rowStart,
+      rowEnd,
+    });
+    const pixels = this.size * this.size;
+    const bandPixels = band.rows * this.size;
+    const offset = rowStart * this.size;
+    for (let c = 0; c < 3; c++)
+      image.rgb.set(band.rgb.subarray(c * bandPixels, (c + 1) * bandPixels), c * pixels + offset);
+    image.stepsPerPixel.set(band.stepsPerPixel, offset);
+    image.plannedPerPixel.set(band.plannedPerPixel, offset);
+    image.steps += band.steps;
+    image.plannedSteps += band.plannedSteps;
+    image.terminatedRays += band.terminatedRays;
+    image.cappedRays += band.cappedRays;
+    return { milliseconds: band.milliseconds, how: timingLabel(band.timing) };
+  }
+}
+
+/** One whole frame on a renderer: the image and what it cost. */
+export async function renderFrame(
+  renderer: FrameRenderer,
+  inputs: FrameInputs,
+  stepVoxels: number,
+  threshold: number,
+): Promise<{ image: VolumeImage } & RowsCost> {
+  const image = renderer.blank();
+  const cost = await renderer.renderInto(image, inputs, stepVoxels, threshold, 0, renderer.size);
+  return { image, ...cost };
+}
+
+/** Paints size × size colours into a canvas, scaled to the canvas's size (nearest neighbour). */
+export function paintImage(
+  canvas: HTMLCanvasElement,
+  size: number,
+  colourAt: (index: number) => Rgb,
+): void {
+  const context = canvas.getContext('2d');
+  if (!context) throw new Error('this browser cannot draw on a 2D canvas');
+  const image = context.createImageData(size, size);
+  for (let index = 0; index < size * size; index++) {
+    const rgb = colourAt(index);
+    for (let c = 0; c < 3; c++) image.data[4 * index + c] = Math.round(rgb[c]!);
+    image.data[4 * index + 3] = 255;
+  }
+  if (size === canvas.width && size === canvas.height) {
+    context.putImageData(image, 0, 0);
+    return;
+  }
+  const small = new OffscreenCanvas(size, size);
+  small.getContext('2d')?.putImageData(image, 0, 0);
+  context.imageSmoothingEnabled = false;
+  context.drawImage(small, 0, 0, canvas.width, canvas.height);
+}

@@ -1,0 +1,219 @@
+// GPU backend of <sb-transfer-function>: the kernel in
+// shaders/kernels/transfer-function.wesl, linked against the shared library, ray
+// casts rows of the image in a compute pass (timed with timestamp queries where
+// available, wall time otherwise). The phantom lives in an r32float 3D texture
+// read with textureLoad (medium.wesl's gridDensityTrilinear), which runCompute's
+// storage-buffer bindings cannot hold, so this backend binds it through its own
+// layout. The output (colour planes and step counts) is read back: the widget
+// needs the numbers for the RMSE and paints them into a 2D canvas.
+import { withErrorScopes } from '../../gpu/errors.ts';
+import { linkKernel, type ShaderLibrary } from '../../gpu/link.ts';
+import { GpuTimer } from '../../gpu/timing.ts';
+import type { DensityGridData } from '../../reference/medium.ts';
+import {
+  packTransferFunction,
+  TRANSFER_FUNCTION_WORDS,
+  type TransferFunction,
+} from '../../reference/volume.ts';
+import type { GpuTiming } from '../base/imageKernel.ts';
+import { CT_RESCALE_INTERCEPT } from './phantom.ts';
+import { BACKGROUND, frameCamera, VOXEL, type FrameInputs, type VolumeImage } from './model.ts';
+
+const KERNEL = 'kernels/transfer-function.wesl';
+/** Words of TransferParams in the kernel. */
+const PARAMS_WORDS = 44;
+/** Output words per pixel: r, g, b, steps, planned steps, flags. */
+const WORDS_PER_PIXEL = 6;
+
+export interface RowsRequest {
+  inputs: Pick<FrameInputs, 'tf' | 'azimuth' | 'elevation'>;
+  size: number;
+  stepVoxels: number;
+  threshold: number;
+  rowStart: number;
+  rowEnd: number;
+}
+
+export interface GpuRows extends VolumeImage {
+  rowStart: number;
+  rows: number;
+  milliseconds: number;
+  timing: GpuTiming;
+}
+
+export function packParams(request: RowsRequest, data: DensityGridData): Uint32Array<ArrayBuffer> {
+  const u32 = new Uint32Array(PARAMS_WORDS);
+  const f32 = new Float32Array(u32.buffer);
+  const { grid } = data;
+  const camera = frameCamera(request.inputs.azimuth, request.inputs.elevation, request.size);
+  u32[0] = request.size;
+  u32[1] = request.size;
+  u32[2] = request.rowStart;
+  u32[3] = request.rowEnd - request.rowStart;
+  // Camera (80 bytes): position, projection, forward, right, up (each vec3f + a pad
+  // word), halfExtent, imageSize.
+  camera.position.forEach((v, a) => (f32[4 + a] = v));
+  u32[7] = camera.projection;
+  camera.forward.forEach((v, a) => (f32[8 + a] = v));
+  camera.right.forEach((v, a) => (f32[12 + a] = v));
+  camera.up.forEach((v, a) => (f32[16 + a] = v));
+  f32[20] = camera.halfExtent[0];
+  f32[21] = camera.halfExtent[1];
+  f32[22] = camera.imageSize[0];
+  f32[23] = camera.imageSize[1];
+  grid.dimensions.forEach((n, a) => (u32[24 + a] = n));
+  f32[27] = CT_RESCALE_INTERCEPT;
+  grid.boundsMin.forEach((v, a) => (f32[28 + a] = v));
+  f32[31] = grid.densityScale;
+  grid.boundsMax.forEach((v, a) => (f32[32 + a] = v));
+  f32[35] = VOXEL;
+  BACKGROUND.forEach((v, a) => (f32[36 + a] = v));
+  f32[39] = request.stepVoxels * VOXEL;
+  f32[40] = request.threshold;
+  return u32;
+}
+
+export class VolumeRendererGpu {
+  private constructor(
+    private readonly device: GPUDevice,
+    private readonly data: DensityGridData,
+    private readonly pipeline: GPUComputePipeline,
+    private readonly layout: GPUBindGroupLayout,
+    private readonly texture: GPUTexture,
+  ) {}
+
+  /** Links the kernel, builds the pipeline and uploads the grid into a 3D texture. */
+  static async create(
+    device: GPUDevice,
+    library: ShaderLibrary,
+    data: DensityGridData,
+  ): Promise<VolumeRendererGpu> {
+    const source = library[KERNEL];
+    if (source === undefined) throw new Error(`no shader module "${KERNEL}" in the library`);
+    const code = await linkKernel(library, source);
+    const [nx, ny, nz] = data.grid.dimensions;
+    const parts = await withErrorScopes(device, 'transfer-function pipeline', () => {
+      const layout = device.createBindGroupLayout({
+        entries: [
+          { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
+          { binding: 1, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
+          {
+            binding: 2,
+            visibility: GPUShaderStage.COMPUTE,
+            texture: { sampleType: 'unfilterable-float', viewDimension: '3d' },
+          },
+          { binding: 3, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'storage' } },
+        ],
+      });
+      const pipeline = device.createComputePipeline({
+        layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
+        compute: { module: device.createShaderModule({ code }), entryPoint: 'renderImage' },
+      });
+      const texture = device.createTexture({
+        size: [nx, ny, nz],
+        dimension: '3d',
+        format: 'r32float',
+        usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+      });
+      const volume = data.volume;
+      device.queue.writeTexture(
+        { texture },
+        volume.buffer,
+        { offset: volume.byteOffset, bytesPerRow: nx * 4, rowsPerImage: ny },
+        [nx, ny, nz],
+      );
+      return { layout, pipeline, texture };
+    });
+    return new VolumeRendererGpu(device, data, parts.pipeline, parts.layout, parts.texture);
+  }
+
+  /** Ray casts rows [rowStart, rowEnd) and reads them back with the time the pass took. */
+  async renderRows(request: RowsRequest): Promise<GpuRows> {
+    const { device } = this;
+    const rows = Math.max(0, Math.min(request.rowEnd, request.size) - request.rowStart);
+    const pixels = rows * request.size;
+    const outputBytes = Math.max(16, WORDS_PER_PIXEL * pixels * 4);
+    const made: GPUBuffer[] = [];
+    const buffer = (size: number, usage: number, data?: Uint32Array): GPUBuffer => {
+      const b = device.createBuffer({ size: Math.ceil(size / 16) * 16, usage });
+      if (data) device.queue.writeBuffer(b, 0, data.buffer, data.byteOffset, data.byteLength);
+      made.push(b);
+      return b;
+    };
+    const timer = new GpuTimer(device);
+    try {
+      const readBack = await withErrorScopes(device, 'transfer-function render', () => {
+        const UNIFORM = GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST;
+        const params = packParams(request, this.data);
+        const tfWords = packTransferFunction(
+          request.inputs.tf as TransferFunction,
+          new Uint32Array(TRANSFER_FUNCTION_WORDS),
+        );
+        const output = buffer(outputBytes, GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC);
+        const read = buffer(outputBytes, GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST);
+        const bindGroup = device.createBindGroup({
+          layout: this.layout,
+          entries: [
+            { binding: 0, resource: { buffer: buffer(params.byteLength, UNIFORM, params) } },
+            { binding: 1, resource: { buffer: buffer(tfWords.byteLength, UNIFORM, tfWords) } },
+            { binding: 2, resource: this.texture.createView() },
+            { binding: 3, resource: { buffer: output } },
+          ],
+        });
+        const encoder = device.createCommandEncoder();
+        const pass = encoder.beginComputePass(timer.passDescriptor());
+        pass.setPipeline(this.pipeline);
+        pass.setBindGroup(0, bindGroup);
+        pass.dispatchWorkgroups(Math.ceil(request.size / 8), Math.ceil(Math.max(rows, 1) / 8));
+        pass.end();
+        timer.resolve(encoder);
+        encoder.copyBufferToBuffer(output, 0, read, 0, outputBytes);
+        device.queue.submit([encoder.finish()]);
+        return read;
+      });
+      const start = performance.now();
+      await readBack.mapAsync(GPUMapMode.READ);
+      const wallMs = performance.now() - start;
+      const words = new Uint32Array(
+        readBack.getMappedRange().slice(0, WORDS_PER_PIXEL * pixels * 4),
+      );
+      readBack.unmap();
+      const gpuMs = await timer.read();
+      const rgb = new Float32Array(words.buffer, 0, 3 * pixels);
+      const stepsPerPixel = words.slice(3 * pixels, 4 * pixels);
+      const plannedPerPixel = words.slice(4 * pixels, 5 * pixels);
+      let steps = 0;
+      let plannedSteps = 0;
+      let terminatedRays = 0;
+      let cappedRays = 0;
+      for (let i = 0; i < pixels; i++) {
+        steps += words[3 * pixels + i]!;
+        plannedSteps += words[4 * pixels + i]!;
+        const flags = words[5 * pixels + i]!;
+        terminatedRays += flags & 1;
+        cappedRays += (flags >> 1) & 1;
+      }
+      return {
+        size: request.size,
+        rgb,
+        steps,
+        plannedSteps,
+        terminatedRays,
+        cappedRays,
+        stepsPerPixel,
+        plannedPerPixel,
+        rowStart: request.rowStart,
+        rows,
+        milliseconds: gpuMs ?? wallMs,
+        timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+      };
+    } finally {
+      timer.destroy();
+      for (const b of made) b.destroy();
+    }
+  }
+
+  destroy(): void {
+    this.texture.destroy();
+  }
+}
