@@ -9,28 +9,19 @@
 // cancellable), deep links, presentation mode and the CPU fallback.
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  trackErrors,
+  waitForRender,
+  widgetOpener,
+} from './support.ts';
 
 const CHAPTER = '/chapters/06-unbiased-transmittance.html';
 const ID = 'delta-tracking-1';
 
-async function openWidget(
-  page: Page,
-  state: Record<string, string> = {},
-  query = '',
-): Promise<Locator> {
-  const hash = Object.entries(state)
-    .map(([k, v]) => `${ID}.${k}=${v}`)
-    .join('&');
-  await page.goto(`${CHAPTER}${query}${hash ? `#${hash}` : ''}`);
-  const widget = page.locator('sb-delta-tracking').first();
-  await waitForRender(widget);
-  return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
-}
+const openWidget = widgetOpener(CHAPTER, 'sb-delta-tracking', ID);
 
 function control(widget: Locator, name: string): Locator {
   return widget.locator(`input[type="number"][name="${name}"], select[name="${name}"]`);

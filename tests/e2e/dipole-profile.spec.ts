@@ -4,30 +4,21 @@
 // the preset, "More photons" grows the Monte Carlo and shrinks its error bars and can be
 // cancelled, a deep link restores the state, presentation mode and the number keys work,
 // and without WebGPU the float64 twins draw the same numbers and say so.
-import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import { expect, test, type Locator } from '@playwright/test';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  trackErrors,
+  waitForRender,
+  widgetOpener,
+} from './support.ts';
 import { dipoleParameters, dipoleTotalReflectance } from '../../src/reference/dipole.ts';
 
 const CHAPTER = '/chapters/11-subsurface-scattering.html';
 const ID = 'dipole-profile-1';
 
-async function openWidget(
-  page: Page,
-  state: Record<string, string> = {},
-  query = '',
-): Promise<Locator> {
-  const hash = Object.entries(state)
-    .map(([k, v]) => `${ID}.${k}=${v}`)
-    .join('&');
-  await page.goto(`${CHAPTER}${query}${hash ? `#${hash}` : ''}`);
-  const widget = page.locator('sb-dipole-profile').first();
-  await waitForRender(widget);
-  return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
-}
+const openWidget = widgetOpener(CHAPTER, 'sb-dipole-profile', ID);
 
 function control(widget: Locator, name: string): Locator {
   return widget.locator(`input[type="number"][name="${name}"], select[name="${name}"]`);

@@ -12,6 +12,7 @@ import {
   canvasStats,
   displayedDigits,
   parseDisplayed,
+  readout,
   trackErrors,
   waitForRender,
 } from './support.ts';
@@ -48,10 +49,6 @@ async function framesDrawn(widget: Locator): Promise<number> {
 async function nextFrame(widget: Locator, before: number): Promise<Buffer> {
   await expect.poll(() => framesDrawn(widget)).toBeGreaterThan(before);
   return (await canvasStats(widget.locator('canvas.sb-hg-3d'))).png;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
 }
 
 function controlValue(widget: Locator, name: string): Locator {

@@ -4,29 +4,13 @@
 // bounds a run, the state round-trips through the URL, presentation mode and
 // presets work, and without WebGPU the float64 twin trains in a Web Worker and
 // says so.
-import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import { expect, test, type Locator } from '@playwright/test';
+import { canvasStats, parseDisplayed, readout, trackErrors, widgetOpener } from './support.ts';
 
 const CHAPTER = '/chapters/08-inverse-volume-rendering.html';
 const ID = 'inverse-render-1';
 
-async function openWidget(
-  page: Page,
-  state: Record<string, string> = {},
-  query = '',
-): Promise<Locator> {
-  const hash = Object.entries(state)
-    .map(([k, v]) => `${ID}.${k}=${v}`)
-    .join('&');
-  await page.goto(`${CHAPTER}${query}${hash ? `#${hash}` : ''}`);
-  const widget = page.locator('sb-inverse-render').first();
-  await waitForRender(widget);
-  return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
-}
+const openWidget = widgetOpener(CHAPTER, 'sb-inverse-render', ID);
 
 async function iteration(widget: Locator): Promise<number> {
   return parseDisplayed(await readout(widget, 'iteration'));

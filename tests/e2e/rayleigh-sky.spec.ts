@@ -7,7 +7,7 @@
 // falls back to the float64 twin and says so.
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import { canvasStats, parseDisplayed, readout, trackErrors, waitForRender } from './support.ts';
 
 const CHAPTER = '/chapters/03-phase-functions-and-in-scattering.html';
 const ID = 'rayleigh-sky-1';
@@ -25,10 +25,6 @@ async function openSky(
   const widget = page.locator('sb-rayleigh-sky').first();
   await waitForRender(widget);
   return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
 }
 
 function controlValue(widget: Locator, name: string): Locator {

@@ -4,29 +4,20 @@
 // state round-trips through the URL, presentation mode and presets work, the
 // sweep completes with a fitted order and can be cancelled, and without WebGPU the
 // float64 twin draws at reduced resolution and says so.
-import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import { expect, test, type Locator } from '@playwright/test';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  trackErrors,
+  waitForRender,
+  widgetOpener,
+} from './support.ts';
 
 const CHAPTER = '/chapters/05-emission-absorption-and-ray-marching.html';
 const ID = 'raymarch-steps-1';
 
-async function openWidget(
-  page: Page,
-  state: Record<string, string> = {},
-  query = '',
-): Promise<Locator> {
-  const hash = Object.entries(state)
-    .map(([k, v]) => `${ID}.${k}=${v}`)
-    .join('&');
-  await page.goto(`${CHAPTER}${query}${hash ? `#${hash}` : ''}`);
-  const widget = page.locator('sb-raymarch-steps').first();
-  await waitForRender(widget);
-  return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
-}
+const openWidget = widgetOpener(CHAPTER, 'sb-raymarch-steps', ID);
 
 function control(widget: Locator, name: string): Locator {
   return widget.locator(`input[type="number"][name="${name}"], select[name="${name}"]`);

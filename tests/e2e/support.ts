@@ -46,6 +46,32 @@ export function trackErrors(page: Page): string[] {
   return errors;
 }
 
+/**
+ * A function that opens `chapter` with a widget's state in the URL hash
+ * (`id.key=value&…`, plus an optional query such as `?backend=cpu`) and waits for the
+ * widget's first frame.
+ */
+export function widgetOpener(
+  chapter: string,
+  tag: string,
+  id: string,
+): (page: Page, state?: Record<string, string>, query?: string) => Promise<Locator> {
+  return async (page, state = {}, query = '') => {
+    const hash = Object.entries(state)
+      .map(([k, v]) => `${id}.${k}=${v}`)
+      .join('&');
+    await page.goto(`${chapter}${query}${hash ? `#${hash}` : ''}`);
+    const widget = page.locator(tag).first();
+    await waitForRender(widget);
+    return widget;
+  };
+}
+
+/** The text of a widget's readout `key` (`data-readout`). */
+export async function readout(widget: Locator, key: string): Promise<string> {
+  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
+}
+
 /** Scrolls a widget into view and waits until it has drawn at least `count` times. */
 export async function waitForRender(widget: Locator, count = 1): Promise<void> {
   await widget.scrollIntoViewIfNeeded();

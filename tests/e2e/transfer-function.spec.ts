@@ -4,29 +4,20 @@
 // saving, the transfer-function handles work from the keyboard, a deep link restores
 // the state, a garbled link is reported, presentation mode works, the sweep fits an
 // order, and without WebGPU the float64 twin draws at reduced resolution and says so.
-import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import { expect, test, type Locator } from '@playwright/test';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  trackErrors,
+  waitForRender,
+  widgetOpener,
+} from './support.ts';
 
 const CHAPTER = '/chapters/07-volume-visualization.html';
 const ID = 'transfer-function-1';
 
-async function openWidget(
-  page: Page,
-  state: Record<string, string> = {},
-  query = '',
-): Promise<Locator> {
-  const hash = Object.entries(state)
-    .map(([k, v]) => `${ID}.${k}=${v}`)
-    .join('&');
-  await page.goto(`${CHAPTER}${query}${hash ? `#${hash}` : ''}`);
-  const widget = page.locator('sb-transfer-function').first();
-  await waitForRender(widget);
-  return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
-}
+const openWidget = widgetOpener(CHAPTER, 'sb-transfer-function', ID);
 
 function control(widget: Locator, name: string): Locator {
   return widget.locator(`input[type="number"][name="${name}"], select[name="${name}"]`);

@@ -7,7 +7,7 @@
 // widget's own counters (spp readout, data-rendered), never on wall time.
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import { PNG } from 'pngjs';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import { canvasStats, parseDisplayed, readout, trackErrors, waitForRender } from './support.ts';
 
 const CHAPTER = '/chapters/10-multiple-scattering.html';
 const ID = 'volume-path-tracer-1';
@@ -22,10 +22,6 @@ async function openWidget(page: Page, state: Record<string, string> = {}): Promi
   const widget = page.locator('sb-volume-path-tracer').first();
   await waitForRender(widget);
   return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
 }
 
 function control(widget: Locator, name: string): Locator {

@@ -9,6 +9,7 @@ import {
   canvasStats,
   displayedDigits,
   parseDisplayed,
+  readout,
   trackErrors,
   waitForRender,
 } from './support.ts';
@@ -20,10 +21,6 @@ async function openChapter(page: Page, query = '', hash = ''): Promise<Locator> 
   const widget = page.locator('sb-vre-ray').first();
   await waitForRender(widget);
   return widget;
-}
-
-async function readout(widget: Locator, key: string): Promise<string> {
-  return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
 }
 
 function controlValue(widget: Locator, name: string): Locator {
