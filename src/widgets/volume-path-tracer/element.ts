@@ -84,6 +84,8 @@ interface ReferenceJob {
   accumulators: Record<Order, ImageAccumulator>;
   done: Record<Order, Reference> | null;
   cancelled: boolean;
+  /** Samples per pixel of the next reference pass, sized to REFERENCE_FRAME_MS. */
+  passSpp: number;
 }
 
 /** Everything of one parameter set on one backend. */
@@ -100,6 +102,12 @@ interface Run {
 
 const COLOURS: Record<Order, string> = { single: '#d9822b', multiple: '#2b7bb9' };
 const MAX_CACHED_REFERENCES = 8;
+/**
+ * Time one frame's reference pass may take (both orders together): the reference runs
+ * beside the progressive images, and a fixed pass of budget.referencePass spp made
+ * frames of seconds on a CPU WebGPU. Its size adapts to the measured cost per sample.
+ */
+const REFERENCE_FRAME_MS = 120;
 
 export class VolumePathTracerElement extends WidgetElement {
   protected readonly entry = VOLUME_PATH_TRACER;
@@ -318,6 +326,7 @@ export class VolumePathTracerElement extends WidgetElement {
           },
           done: null,
           cancelled: false,
+          passSpp: 1,
         };
         this.references.set(key, reference);
         this.trimReferences();
@@ -438,12 +447,27 @@ export class VolumePathTracerElement extends WidgetElement {
     const job = run.reference;
     if (job.done || job.cancelled || !job.renderers) return;
     const { budget } = run;
+    let spent = 0;
+    let rendered = 0;
     for (const order of ORDERS) {
       const accumulator = job.accumulators[order];
-      const samples = Math.min(budget.referencePass, budget.referenceSpp - accumulator.samples);
+      const passSpp = Math.min(job.passSpp, budget.referencePass);
+      const samples = Math.min(passSpp, budget.referenceSpp - accumulator.samples);
       if (samples <= 0) continue;
       const output = await job.renderers[order].renderPass(accumulator.samples, samples);
       accumulator.addPass(output.floats, output.words, samples);
+      spent += output.milliseconds;
+      rendered += samples;
+    }
+    if (rendered > 0 && spent > 0) {
+      const perSample = spent / rendered; // ms per spp of one order's image
+      job.passSpp = Math.max(
+        1,
+        Math.min(
+          budget.referencePass,
+          Math.floor(REFERENCE_FRAME_MS / (ORDERS.length * perSample)),
+        ),
+      );
     }
     if (ORDERS.every((order) => job.accumulators[order].samples >= budget.referenceSpp)) {
       const finished = (order: Order): Reference => ({
