@@ -92,7 +92,7 @@ export const DIPOLE_PROFILE: WidgetEntry = {
     {
       kind: 'number',
       name: 'photons',
-      label: 'Monte Carlo photons per channel (log₂)',
+      label: 'Monte Carlo target: photons per channel (log₂)',
       symbol: 'log₂ N',
       unit: '',
       min: 12,

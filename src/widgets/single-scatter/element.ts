@@ -582,7 +582,11 @@ export class SingleScatterElement extends WidgetElement {
 
     const samples = accumulator.samples;
     this.set('spp', `${samples} of ${target}`, samples >= target ? 'ok' : undefined);
-    this.set('std-error', formatNumber(rmsStandardError(standardError), 3));
+    // One sample has no sample variance (the accumulator returns NaN): say so.
+    this.set(
+      'std-error',
+      samples < 2 ? 'needs ≥ 2 samples' : formatNumber(rmsStandardError(standardError), 3),
+    );
     const referenceSamples = reference.accumulator.samples;
     const referenceDone = referenceSamples >= referenceTarget;
     this.dataset['referenceDone'] = String(referenceDone);
