@@ -43,3 +43,8 @@ export class BackendChooser<Renderer> {
     this.current = Promise.resolve({ kind: 'cpu', reason });
   }
 }
+
+/** The reason a widget gives when its GPU path threw and it switches to the CPU twin. */
+export function gpuFailureReason(error: unknown): string {
+  return `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`;
+}

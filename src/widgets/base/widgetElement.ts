@@ -364,6 +364,11 @@ export abstract class WidgetElement extends HTMLElement {
     if (timeoutMs) setTimeout(() => this.clearNotice(key), timeoutMs);
   }
 
+  /** The notice every widget shows while it draws with its float64 CPU twin instead. */
+  protected showCpuFallbackNotice(reason: string, what: string): void {
+    this.showNotice('backend', 'warning', `WebGPU is not available (${reason}). ${what}`);
+  }
+
   clearNotice(key: string): void {
     this.notices.get(key)?.remove();
     this.notices.delete(key);

@@ -2,7 +2,11 @@
 // draws the attenuated beam on the GPU, reports T at the exit next to its float64
 // reference and the cost of computing it, and checks the multiplicative property
 // T(0→d) = T(0→s₀)·T(s₀→d) at the split point.
-import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
+import {
+  BackendChooser,
+  type Backend as ChosenBackend,
+  gpuFailureReason,
+} from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot } from '../base/plot.ts';
 import { timingLabel } from '../base/imageKernel.ts';
@@ -109,19 +113,16 @@ export class BeerLawElement extends WidgetElement {
         result = await backend.renderer.computeCurve(inputs);
         await backend.renderer.draw(inputs);
       } catch (error) {
-        this.fallBackToCpu(
-          `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-        );
+        this.fallBackToCpu(gpuFailureReason(error));
         return;
       }
       this.clearNotice('backend');
     } else {
       if (this.canvas) drawBeamCpu(this.canvas, inputs);
       result = reference;
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU reference, drawn at half resolution.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU reference, drawn at half resolution.`,
       );
     }
     this.showResult(inputs, result, reference, backend);

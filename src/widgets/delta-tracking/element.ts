@@ -7,7 +7,7 @@
 // once at the same spp and once at the same GPU time (the spp of each from its
 // measured cost per sample, compare.ts), and sweeps all five into one log–log
 // plot of RMSE against time with each curve's fitted slope.
-import { BackendChooser, type Backend } from '../base/backend.ts';
+import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
 import {
@@ -286,10 +286,9 @@ export class DeltaTrackingElement extends WidgetElement {
     if (backend.kind === 'gpu') {
       this.clearNotice('backend');
     } else {
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same rays and estimators, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels${inputs.view === 'compare' ? ', with CPU wall time in place of GPU time' : ''}.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twin: the same rays and estimators, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels${inputs.view === 'compare' ? ', with CPU wall time in place of GPU time' : ''}.`,
       );
     }
     try {
@@ -301,9 +300,7 @@ export class DeltaTrackingElement extends WidgetElement {
       }
     } catch (error) {
       if (backend.kind === 'cpu') throw error;
-      this.backends.useCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      );
+      this.backends.useCpu(gpuFailureReason(error));
       this.sweep?.cancel('stopped: the GPU path failed');
       this.sweepAll?.cancel('stopped: the GPU path failed');
       this.scheduleRender();

@@ -7,7 +7,7 @@
 // errors against the Monte Carlo's time; draws a disc of the material lit by a thin
 // beam from the dipole. "More photons" continues the Monte Carlo progressively and can
 // be cancelled. Without WebGPU the float64 twins do all of it on the CPU.
-import { BackendChooser, type Backend } from '../base/backend.ts';
+import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel, type GpuTiming } from '../base/imageKernel.ts';
 import { LinePlot } from '../base/plot.ts';
@@ -303,18 +303,15 @@ export class DipoleProfileElement extends WidgetElement {
       }
     } catch (error) {
       if (backend.kind === 'cpu') throw error;
-      this.fallBackToCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      );
+      this.fallBackToCpu(gpuFailureReason(error));
       return;
     }
     this.curvesCost = { milliseconds: frameMs, how };
     if (backend.kind === 'gpu') this.clearNotice('backend');
     else
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twins: the same profiles and Monte Carlo walks, the disc at ${CPU_DISC_SIZE}×${CPU_DISC_SIZE} pixels.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twins: the same profiles and Monte Carlo walks, the disc at ${CPU_DISC_SIZE}×${CPU_DISC_SIZE} pixels.`,
       );
     const key = monteCarloKey(inputs);
     if (this.mc.key !== key) {

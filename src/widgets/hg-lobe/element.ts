@@ -5,7 +5,11 @@
 // normalisation of the float64 twin, and the cost of sampling on the GPU next to
 // the CPU twin (averaged over frames); a cancellable sweep over N = 2¹⁰ … 2²⁰ plots
 // the histogram's L1 error against the sampling time, next to its exact expectation.
-import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
+import {
+  BackendChooser,
+  type Backend as ChosenBackend,
+  gpuFailureReason,
+} from '../base/backend.ts';
 import { hgEval } from '../../reference/phase.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
@@ -96,11 +100,7 @@ export class HgLobeElement extends WidgetElement {
     this.labels.setAttribute('aria-hidden', 'true');
     figure.append(this.canvas, this.labels);
     stage.appendChild(figure);
-    this.view = new LobeView((error) =>
-      this.fallBackToCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      ),
-    );
+    this.view = new LobeView((error) => this.fallBackToCpu(gpuFailureReason(error)));
     stage.appendChild(this.view.figure);
     this.plotArea = document.createElement('div');
     this.plotArea.className = 'sb-plot';
@@ -168,9 +168,7 @@ export class HgLobeElement extends WidgetElement {
         histogram = await backend.renderer.sample(inputs, layout);
         await backend.renderer.draw(inputs, layout);
       } catch (error) {
-        this.fallBackToCpu(
-          `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-        );
+        this.fallBackToCpu(gpuFailureReason(error));
         return;
       }
       this.clearNotice('backend');
@@ -186,10 +184,9 @@ export class HgLobeElement extends WidgetElement {
       this.view?.useCpu();
       histogram = sampleHistogramCpu(inputs.g, inputs.sampleCount, inputs.seed);
       replay = histogram;
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same samples (the same PCG streams), the polar picture at half resolution and the 3D lobe as a wireframe.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twin: the same samples (the same PCG streams), the polar picture at half resolution and the 3D lobe as a wireframe.`,
       );
     }
     this.view?.show({ inputs, logFloor: layout.logFloor });

@@ -6,7 +6,7 @@
 // one per animation frame, so the page stays live and Pause/Reset act at once. The
 // widget shows targets against the current fit, the held-out view with its error
 // image, the loss curve, the iteration rate and the GPU time per iteration.
-import { BackendChooser, type Backend } from '../base/backend.ts';
+import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
 import { gradientCss, imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
@@ -229,9 +229,7 @@ export class InverseRenderElement extends WidgetElement {
       }
     } catch (error) {
       if (backend.kind === 'cpu') throw error;
-      this.backends.useCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      );
+      this.backends.useCpu(gpuFailureReason(error));
       this.stop('stopped: the GPU path failed');
       this.trainerKey = '';
       this.scheduleRender();

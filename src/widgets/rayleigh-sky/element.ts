@@ -5,7 +5,11 @@
 // the relative error and the GPU time of the panorama (timestamp queries, median
 // over frames). A cancellable sweep over N plots the probes' relative RMS error
 // against that time and fits the order of convergence.
-import { BackendChooser, type Backend as ChosenBackend } from '../base/backend.ts';
+import {
+  BackendChooser,
+  type Backend as ChosenBackend,
+  gpuFailureReason,
+} from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel, type GpuTiming } from '../base/imageKernel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
@@ -261,9 +265,7 @@ export class RayleighSkyElement extends WidgetElement {
           picture: { ...recent, passes: frame.passes, timing: frame.timing },
         };
       } catch (error) {
-        this.fallBackToCpu(
-          `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-        );
+        this.fallBackToCpu(gpuFailureReason(error));
         return;
       }
       this.clearNotice('backend');
@@ -279,10 +281,9 @@ export class RayleighSkyElement extends WidgetElement {
         capped: false,
         picture: { ...recent, passes: 1, timing: 'cpu' },
       };
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same integral with the same N and M, the picture drawn at quarter resolution.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twin: the same integral with the same N and M, the picture drawn at quarter resolution.`,
       );
     }
     if (shown.capped) {

@@ -3,7 +3,7 @@
 // error against a converged reference (false colour, labelled scale), the RMSE,
 // the GPU time and the clamped linear factors; a cancellable sweep over
 // N = 1, 2, 4, …, 256 plots RMSE against GPU time and fits the order of convergence.
-import { BackendChooser, type Backend } from '../base/backend.ts';
+import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
 import {
@@ -154,9 +154,7 @@ export class RaymarchStepsElement extends WidgetElement {
       frame = await this.frame(backend, inputs, inputs.steps);
     } catch (error) {
       if (backend.kind === 'cpu') throw error;
-      this.backends.useCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      );
+      this.backends.useCpu(gpuFailureReason(error));
       this.sweep?.cancel('stopped: the GPU was lost');
       this.scheduleRender();
       return;
@@ -164,10 +162,9 @@ export class RaymarchStepsElement extends WidgetElement {
     if (backend.kind === 'gpu') {
       this.clearNotice('backend');
     } else {
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same rays and marches, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twin: the same rays and marches, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels.`,
       );
     }
     this.showFrame(inputs, frame, backend);

@@ -17,7 +17,7 @@ import { packScene, sceneData } from '../../scene/pack.ts';
 import { GENERAL_CONDITIONS, plan, type Conditions, type Plan } from '../../scene/plan.ts';
 import type { PassRenderer, PassTiming } from '../../scene/render.ts';
 import { parseScene } from '../../scene/validate.ts';
-import { BackendChooser, type Backend } from '../base/backend.ts';
+import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
 import {
@@ -358,9 +358,7 @@ export class SingleScatterElement extends WidgetElement {
       await this.frame(inputs, backend);
     } catch (error) {
       if (backend.kind === 'cpu') throw error;
-      this.backends.useCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      );
+      this.backends.useCpu(gpuFailureReason(error));
       this.resetAll();
       this.scheduleRender();
     }
@@ -375,10 +373,9 @@ export class SingleScatterElement extends WidgetElement {
     const key = `${backend.kind}|${sceneKey(inputs)}`;
     if (gpu) this.clearNotice('backend');
     else
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin of the same kernel at ${CPU_WIDTH}×${CPU_HEIGHT} pixels, up to ${CPU_SPP_CAP} samples per pixel.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twin of the same kernel at ${CPU_WIDTH}×${CPU_HEIGHT} pixels, up to ${CPU_SPP_CAP} samples per pixel.`,
       );
 
     if (!this.run || this.run.key !== key) {

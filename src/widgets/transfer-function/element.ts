@@ -6,7 +6,7 @@
 // with progress, cancellable), the steps early ray termination takes and saves,
 // its bias bound, and a cancellable sweep of RMSE against time over the step size.
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
-import { BackendChooser, type Backend } from '../base/backend.ts';
+import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import {
   gradientCss,
@@ -365,9 +365,7 @@ export class TransferFunctionElement extends WidgetElement {
       frame = await renderFrame(renderer, inputs, inputs.step, thresholdOf(inputs));
     } catch (error) {
       if (backend.kind === 'cpu') throw error;
-      this.backends.useCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      );
+      this.backends.useCpu(gpuFailureReason(error));
       this.sweep?.cancel('stopped: the GPU was lost');
       this.dropReference();
       this.scheduleRender();
@@ -376,10 +374,9 @@ export class TransferFunctionElement extends WidgetElement {
     if (backend.kind === 'gpu') {
       this.clearNotice('backend');
     } else {
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin: the same rays and marches, at ${CPU_SIZE}×${CPU_SIZE} pixels.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twin: the same rays and marches, at ${CPU_SIZE}×${CPU_SIZE} pixels.`,
       );
     }
     const key = `${renderer.kind}|${sceneKey(inputs)}`;

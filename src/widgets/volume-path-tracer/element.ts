@@ -18,7 +18,7 @@ import { resolveScene } from '../../scene/load.ts';
 import { packScene, sceneData } from '../../scene/pack.ts';
 import { plan, type Plan } from '../../scene/plan.ts';
 import type { PassRenderer, PassTiming } from '../../scene/render.ts';
-import { BackendChooser, type Backend } from '../base/backend.ts';
+import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
 import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
@@ -383,9 +383,7 @@ export class VolumePathTracerElement extends WidgetElement {
       await this.frame(this.run, inputs.spp);
     } catch (error) {
       if (backend.kind === 'cpu') throw error;
-      this.backends.useCpu(
-        `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-      );
+      this.backends.useCpu(gpuFailureReason(error));
       this.discardRun();
       this.scheduleRender();
       return;
@@ -393,10 +391,9 @@ export class VolumePathTracerElement extends WidgetElement {
     if (backend.kind === 'gpu') {
       this.clearNotice('backend');
     } else {
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU twin of the same path tracer: ${CPU_BUDGET.width}×${CPU_BUDGET.height} pixels, at most ${CPU_BUDGET.maxSpp} samples per pixel and ${CPU_BUDGET.maxFrameSpp} per frame, reference ${CPU_BUDGET.referenceSpp}.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU twin of the same path tracer: ${CPU_BUDGET.width}×${CPU_BUDGET.height} pixels, at most ${CPU_BUDGET.maxSpp} samples per pixel and ${CPU_BUDGET.maxFrameSpp} per frame, reference ${CPU_BUDGET.referenceSpp}.`,
       );
     }
     this.show(this.run);

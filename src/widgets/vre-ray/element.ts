@@ -8,6 +8,7 @@ import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot } from '../base/plot.ts';
 import { timingLabel } from '../base/imageKernel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
+import { gpuFailureReason } from '../base/backend.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { VRE_RAY } from './schema.ts';
 import { drawRayCpu, marchRayCpu } from './cpuBackend.ts';
@@ -140,19 +141,16 @@ export class VreRayElement extends WidgetElement {
         result = await backend.renderer.march(inputs);
         await backend.renderer.draw(inputs);
       } catch (error) {
-        this.fallBackToCpu(
-          `the GPU path failed: ${error instanceof Error ? error.message : String(error)}`,
-        );
+        this.fallBackToCpu(gpuFailureReason(error));
         return;
       }
       this.clearNotice('backend');
     } else {
       if (this.canvas) drawRayCpu(this.canvas, inputs);
       result = twin;
-      this.showNotice(
-        'backend',
-        'warning',
-        `WebGPU is not available (${backend.reason}). Showing the float64 CPU march, drawn at half resolution.`,
+      this.showCpuFallbackNotice(
+        backend.reason,
+        `Showing the float64 CPU march, drawn at half resolution.`,
       );
     }
     this.showResult(inputs, result, twin, backend);
