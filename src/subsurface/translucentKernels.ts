@@ -1,0 +1,174 @@
+// The GPU side of <sb-translucent-render> (chapter 11): the three kernels of
+// shaders/kernels/translucent-{diffuse,gather,path}.wesl linked against the library and
+// dispatched with runCompute, each timed (timestamp queries, else wall time). Takes the
+// device and the library, so the widget (browser) and the tests (Dawn) run the same code.
+import { runCompute } from '../gpu/compute.ts';
+import { linkLibraryKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { packOctree, packParams, type Octree, type TranslucentScene } from './translucent.ts';
+
+export interface TimedImage {
+  /** RGB radiance per pixel (row 0 at the top). */
+  image: Float32Array;
+  milliseconds: number;
+  /** 'gpu-timestamp' or 'gpu-wall'. */
+  timing: string;
+}
+
+export interface GatherImage extends TimedImage {
+  /** Octree nodes visited per pixel. */
+  visited: Float32Array;
+  /** Terms (nodes used whole or samples) summed per pixel. */
+  terms: Float32Array;
+}
+
+export interface PathBatch {
+  /** Per pixel: Σ L (RGB), Σ L² (RGB), walks capped; over `samples` samples. */
+  sums: Float32Array;
+  samples: number;
+  milliseconds: number;
+  timing: string;
+}
+
+const workgroups = (size: number): [number, number] => [Math.ceil(size / 8), Math.ceil(size / 8)];
+const floats = (words: Uint32Array): Float32Array =>
+  new Float32Array(words.buffer, words.byteOffset, words.length);
+
+export class TranslucentKernels {
+  private packedFor: Octree | null = null;
+  private packed: { nodes: Uint32Array; samples: Uint32Array } | null = null;
+
+  constructor(
+    private readonly device: GPUDevice,
+    private readonly library: ShaderLibrary,
+  ) {}
+
+  async diffuse(scene: TranslucentScene): Promise<TimedImage> {
+    const code = await linkLibraryKernel(this.library, 'kernels/translucent-diffuse.wesl');
+    const result = await runCompute(this.device, {
+      code,
+      entryPoint: 'diffuseMain',
+      inputs: [],
+      outputWords: 3 * scene.size * scene.size,
+      workgroups: workgroups(scene.size),
+      uniforms: packParams(scene, {}),
+    });
+    return {
+      image: floats(result.output),
+      milliseconds: result.gpuMs ?? result.wallMs,
+      timing: result.gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+    };
+  }
+
+  /** Pass 2 of Jensen & Buhler on the GPU with threshold ε (octree built on the CPU). */
+  async gather(scene: TranslucentScene, octree: Octree, epsilon: number): Promise<GatherImage> {
+    const code = await linkLibraryKernel(this.library, 'kernels/translucent-gather.wesl');
+    if (this.packedFor !== octree || !this.packed) {
+      this.packed = packOctree(octree);
+      this.packedFor = octree;
+    }
+    const pixels = scene.size * scene.size;
+    const result = await runCompute(this.device, {
+      code,
+      entryPoint: 'gatherMain',
+      inputs: [this.packed.nodes, this.packed.samples],
+      outputWords: 5 * pixels,
+      workgroups: workgroups(scene.size),
+      uniforms: packParams(scene, { count: octree.nodes.length, epsilon }),
+    });
+    const out = floats(result.output);
+    const image = new Float32Array(3 * pixels);
+    const visited = new Float32Array(pixels);
+    const terms = new Float32Array(pixels);
+    for (let p = 0; p < pixels; p++) {
+      image[3 * p] = out[5 * p]!;
+      image[3 * p + 1] = out[5 * p + 1]!;
+      image[3 * p + 2] = out[5 * p + 2]!;
+      visited[p] = out[5 * p + 3]!;
+      terms[p] = out[5 * p + 4]!;
+    }
+    return {
+      image,
+      visited,
+      terms,
+      milliseconds: result.gpuMs ?? result.wallMs,
+      timing: result.gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+    };
+  }
+
+  /** `samples` path-traced samples per pixel, the first with index `offset` of stream `seed`. */
+  async pathBatch(
+    scene: TranslucentScene,
+    options: {
+      samples: number;
+      offset: number;
+      seed: number;
+      ambient?: number;
+      maxBounces?: number;
+    },
+  ): Promise<PathBatch> {
+    const code = await linkLibraryKernel(this.library, 'kernels/translucent-path.wesl');
+    const result = await runCompute(this.device, {
+      code,
+      entryPoint: 'pathMain',
+      inputs: [],
+      outputWords: 7 * scene.size * scene.size,
+      workgroups: workgroups(scene.size),
+      uniforms: packParams(scene, {
+        count: options.samples,
+        seed: options.seed,
+        offset: options.offset,
+        ...(options.ambient !== undefined ? { ambient: options.ambient } : {}),
+        ...(options.maxBounces !== undefined ? { maxBounces: options.maxBounces } : {}),
+      }),
+    });
+    return {
+      sums: floats(result.output),
+      samples: options.samples,
+      milliseconds: result.gpuMs ?? result.wallMs,
+      timing: result.gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+    };
+  }
+}
+
+/** Progressive accumulation of path-traced batches in float64, with per-pixel standard error. */
+export class PathAccumulator {
+  readonly sum: Float64Array;
+  readonly sumSquares: Float64Array;
+  samples = 0;
+  capped = 0;
+  milliseconds = 0;
+
+  constructor(readonly pixels: number) {
+    this.sum = new Float64Array(3 * pixels);
+    this.sumSquares = new Float64Array(3 * pixels);
+  }
+
+  add(batch: PathBatch): void {
+    for (let p = 0; p < this.pixels; p++) {
+      for (let c = 0; c < 3; c++) {
+        this.sum[3 * p + c] = this.sum[3 * p + c]! + batch.sums[7 * p + c]!;
+        this.sumSquares[3 * p + c] = this.sumSquares[3 * p + c]! + batch.sums[7 * p + 3 + c]!;
+      }
+      this.capped += batch.sums[7 * p + 6]!;
+    }
+    this.samples += batch.samples;
+    this.milliseconds += batch.milliseconds;
+  }
+
+  /** Mean radiance per pixel and channel. */
+  mean(): Float32Array {
+    const n = Math.max(this.samples, 1);
+    return Float32Array.from(this.sum, (s) => s / n);
+  }
+
+  /** Standard error of the mean per pixel and channel, √((Σx²/n − x̄²)/(n − 1)). */
+  standardError(): Float32Array {
+    const n = this.samples;
+    if (n < 2) return new Float32Array(this.sum.length).fill(NaN);
+    return Float32Array.from(this.sum, (s, k) => {
+      const mean = s / n;
+      const variance = Math.max(0, this.sumSquares[k]! / n - mean * mean) * (n / (n - 1));
+      return Math.sqrt(variance / n);
+    });
+  }
+}
