@@ -1,0 +1,8 @@
+// Sign error: returns −μ, which samples HG with −g (the lobe is mirrored).
+fn sampleHgMu(g: f32, xi: f32) -> f32 {
+  if (abs(g) < 1e-3) {
+    return 2.0 * xi - 1.0;
+  }
+  let s = (1.0 - g * g) / (1.0 - g + 2.0 * g * xi);
+  return -clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+}

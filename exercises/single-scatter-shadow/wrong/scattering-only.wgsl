@@ -1,0 +1,10 @@
+// Attenuates with σs instead of σt = σs + σa (absorption ignored along both rays).
+fn singleScatter(sigmaS: f32, sigmaA: f32, a: f32, b: f32, len: f32, steps: u32) -> f32 {
+  let h = len / f32(steps);
+  var radiance = 0.0;
+  for (var i = 0u; i < steps; i++) {
+    let t = (f32(i) + 0.5) * h;
+    radiance += sigmaS * exp(-sigmaS * t) * exp(-sigmaS * (a + b * t)) * h;
+  }
+  return radiance;
+}

@@ -1,0 +1,121 @@
+// The instructor's command line:
+//   npm run grade -- --exercise ID --submission FILE [--format gradescope|prairielearn|json|junit]
+//                    [--out FILE] [--seed S]
+//   npm run grade -- --self-test [--exercise ID]
+// Grading runs public and hidden checks through Dawn in Node. Exit status: 0 when
+// grading happened (whatever the submission's score, including submissions that do
+// not compile or loop forever), 1 when the self-test fails, 2 for a grader failure
+// (unknown exercise, missing file, bad flags).
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { parseArgs } from 'node:util';
+import { nodeDevice, releaseNodeDevice } from '../gpu/nodeDevice.ts';
+import { loadShaderLibrary } from '../gpu/shaderSourcesNode.ts';
+import { EXERCISE_IDS } from '../../exercises/index.ts';
+import { gradeSubmission } from './grade.ts';
+import { loadFullExercise } from './node.ts';
+import { REPORT_FORMATS, renderReport, summary, type ReportFormat } from './reports.ts';
+import { runSelfTest } from './selfTest.ts';
+
+const USAGE = `usage:
+  grade --exercise ID --submission FILE [--format gradescope|prairielearn|json|junit] [--out FILE] [--seed S]
+  grade --self-test [--exercise ID]
+exercises: ${EXERCISE_IDS.join(', ')}`;
+
+class UsageError extends Error {}
+
+function print(text: string): void {
+  process.stdout.write(`${text}\n`);
+}
+
+const SHADERS = resolve(dirname(fileURLToPath(import.meta.url)), '../../shaders');
+
+async function main(argv: string[]): Promise<number> {
+  let values;
+  try {
+    ({ values } = parseArgs({
+      args: argv,
+      options: {
+        exercise: { type: 'string' },
+        submission: { type: 'string' },
+        format: { type: 'string', default: 'gradescope' },
+        out: { type: 'string' },
+        seed: { type: 'string' },
+        'self-test': { type: 'boolean', default: false },
+        help: { type: 'boolean', default: false },
+      },
+      strict: true,
+      allowPositionals: false,
+    }));
+  } catch (error) {
+    throw new UsageError((error as Error).message);
+  }
+  if (values.help) {
+    print(USAGE);
+    return 0;
+  }
+  const library = loadShaderLibrary(SHADERS);
+  if (values['self-test']) {
+    const ids = values.exercise ? [values.exercise] : EXERCISE_IDS;
+    for (const id of ids)
+      if (!EXERCISE_IDS.includes(id)) throw new UsageError(`unknown exercise "${id}"`);
+    const device = await nodeDevice();
+    const lines = await runSelfTest(device, library, ids, undefined, (line) =>
+      print(`${line.ok ? 'ok  ' : 'FAIL'} ${line.exercise} ${line.subject}: ${line.detail}`),
+    );
+    const failed = lines.filter((l) => !l.ok).length;
+    print(
+      failed === 0
+        ? `self-test passed (${lines.length} checks)`
+        : `self-test FAILED: ${failed} of ${lines.length}`,
+    );
+    return failed === 0 ? 0 : 1;
+  }
+  if (!values.exercise) throw new UsageError('--exercise is required');
+  if (!EXERCISE_IDS.includes(values.exercise))
+    throw new UsageError(`unknown exercise "${values.exercise}"`);
+  if (!values.submission) throw new UsageError('--submission is required');
+  if (!existsSync(values.submission)) throw new UsageError(`no such file: ${values.submission}`);
+  const format = values.format as ReportFormat;
+  if (!REPORT_FORMATS.includes(format))
+    throw new UsageError(`--format must be one of ${REPORT_FORMATS.join(', ')}`);
+  let seed: number | undefined;
+  if (values.seed !== undefined) {
+    seed = Number(values.seed);
+    if (!Number.isInteger(seed) || seed < 0 || seed > 0xffffffff)
+      throw new UsageError('--seed must be an integer in [0, 2^32)');
+  }
+  const source = readFileSync(values.submission, 'utf8');
+  const exercise = await loadFullExercise(values.exercise);
+  const device = await nodeDevice();
+  const outcome = await gradeSubmission(device, library, exercise, source, {
+    which: 'all',
+    ...(seed !== undefined ? { seed } : {}),
+  });
+  const context = { exerciseId: exercise.id, title: exercise.title };
+  print(summary(outcome, context));
+  const report = renderReport(format, outcome, context);
+  if (values.out) {
+    writeFileSync(values.out, report);
+    print(`${format} report written to ${values.out}`);
+  } else {
+    process.stdout.write(report);
+  }
+  return 0;
+}
+
+main(process.argv.slice(2))
+  .then(async (code) => {
+    await releaseNodeDevice();
+    process.exit(code);
+  })
+  .catch(async (error: unknown) => {
+    await releaseNodeDevice();
+    if (error instanceof UsageError) {
+      console.error(`grade: ${error.message}\n${USAGE}`);
+    } else {
+      console.error(`grade: grader failure: ${(error as Error).stack ?? String(error)}`);
+    }
+    process.exit(2);
+  });

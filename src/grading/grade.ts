@@ -1,0 +1,841 @@
+// The grading core, shared by the page (public checks on navigator.gpu) and the
+// instructor's command line (public and hidden checks on Dawn in Node).
+//
+// A submission goes through: signature check → loop instrumentation → compilation
+// (diagnostics mapped back to the student's line and column) → the checks, each one
+// dispatch of a generated harness kernel that calls the student's function once per
+// GPU thread. The reference solution runs through the same harness, linked with WESL
+// against the shader library. A watchdog bounds every GPU wait, and device loss is
+// reported instead of thrown.
+import { linkKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { loadExercise } from '../../exercises/index.ts';
+import {
+  signatureText,
+  type CasesCheck,
+  type ChiSquareCheck,
+  type CheckSpec,
+  type ExerciseDefinition,
+  type MonteCarloCheck,
+} from './exercise.ts';
+import {
+  blankComments,
+  blankImports,
+  GUARD_COUNTER,
+  GUARD_FLAG,
+  instrumentLoops,
+  mapPosition,
+  paramTypeText,
+  parseFunctions,
+  RESERVED_PREFIX,
+  type Insertion,
+} from './instrument.ts';
+import {
+  bernoulliMeanZ,
+  bernoulliVarianceZ,
+  chiSquareEquiprobable,
+  mixSeed,
+  normalCritical,
+  sampleMoments,
+  seededUniforms,
+} from './stats.ts';
+import type { CheckResult, GradeOptions, GradeOutcome, SourceDiagnostic } from './types.ts';
+
+export const DEFAULT_SEED = 20261123;
+export const DEFAULT_TIMEOUT_MS = 20_000;
+export const DEFAULT_LOOP_BUDGET = 4096;
+const WORKGROUP_SIZE = 64;
+/** Words in front of the arguments in the input buffer: call count, seed. */
+const HEADER_WORDS = 2;
+
+/** Grading could not continue; becomes the outcome of that status. */
+export class GradeStop extends Error {
+  constructor(readonly outcome: Exclude<GradeOutcome, { status: 'graded' }>) {
+    super(outcome.message);
+  }
+}
+
+/** A program ready to run: the pipeline and where its source came from. */
+interface Program {
+  pipeline: GPUComputePipeline;
+  role: 'student' | 'reference';
+}
+
+function harness(exercise: ExerciseDefinition): string {
+  const subject = exercise.subject;
+  const lines: string[] = [];
+  const callArgs: string[] = [];
+  let offset = 0;
+  subject.params.forEach((param, index) => {
+    if (param.type === 'ptr<function, u32>') {
+      callArgs.push('&sbg_state');
+      return;
+    }
+    const word = `sbg_inputs[sbg_base + ${offset}u]`;
+    lines.push(
+      param.type === 'f32'
+        ? `  let sbg_a${index} = bitcast<f32>(${word});`
+        : param.type === 'i32'
+          ? `  let sbg_a${index} = bitcast<i32>(${word});`
+          : `  let sbg_a${index} = ${word};`,
+    );
+    callArgs.push(`sbg_a${index}`);
+    offset += 1;
+  });
+  return [
+    '@group(0) @binding(0) var<storage, read> sbg_inputs: array<u32>;',
+    '@group(0) @binding(1) var<storage, read_write> sbg_outputs: array<u32>;',
+    `var<private> ${GUARD_COUNTER}: u32;`,
+    `var<private> ${GUARD_FLAG}: u32;`,
+    // The PCG hash of rng.wesl (pcgHash), repeated here so the harness needs no import.
+    'fn sbg_hash(value: u32) -> u32 {',
+    '  let s = value * 747796405u + 2891336453u;',
+    '  let w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;',
+    '  return (w >> 22u) ^ w;',
+    '}',
+    `@compute @workgroup_size(${WORKGROUP_SIZE})`,
+    'fn sbg_main(@builtin(global_invocation_id) sbg_id: vec3u) {',
+    '  let sbg_i = sbg_id.x;',
+    '  if (sbg_i >= sbg_inputs[0]) { return; }',
+    `  let sbg_base = ${HEADER_WORDS}u + sbg_i * ${Math.max(offset, 1)}u;`,
+    ...lines,
+    '  var sbg_state = sbg_hash(sbg_inputs[1] ^ sbg_hash(sbg_i));',
+    `  ${GUARD_COUNTER} = 0u;`,
+    `  ${GUARD_FLAG} = 0u;`,
+    `  let sbg_r = ${subject.name}(${callArgs.join(', ')});`,
+    '  sbg_outputs[2u * sbg_i] = bitcast<u32>(sbg_r);',
+    `  sbg_outputs[2u * sbg_i + 1u] = ${GUARD_FLAG};`,
+    '}',
+  ].join('\n');
+}
+
+function argumentCount(exercise: ExerciseDefinition): number {
+  return exercise.subject.params.filter((p) => p.type !== 'ptr<function, u32>').length;
+}
+
+/** Resolves after `ms`, or never when ms is not finite. */
+function watchdog(ms: number): { promise: Promise<'timeout'>; cancel: () => void } {
+  let handle: ReturnType<typeof setTimeout> | undefined;
+  const promise = new Promise<'timeout'>((resolve) => {
+    handle = setTimeout(() => resolve('timeout'), ms);
+  });
+  return { promise, cancel: () => clearTimeout(handle) };
+}
+
+const lostDevices = new WeakMap<GPUDevice, GPUDeviceLostInfo>();
+
+function deviceLostStop(what: string, info: { message: string; reason: string }): GradeStop {
+  return new GradeStop({
+    status: 'device-lost',
+    message:
+      `The GPU device was lost while ${what} (${info.message || info.reason}). ` +
+      'Nothing is wrong with the page; reload the GPU and run the checks again.',
+  });
+}
+
+/**
+ * Awaits GPU work with a watchdog: `timeout` after `timeoutMs`, `device-lost` when
+ * the device is lost before the work completes (or the work fails because of it).
+ * Exported for the tests.
+ */
+export async function withDeviceGuards<T>(
+  device: GPUDevice,
+  timeoutMs: number,
+  what: string,
+  work: Promise<T>,
+): Promise<T> {
+  const timer = watchdog(timeoutMs);
+  const lost = device.lost.then((info) => {
+    lostDevices.set(device, info);
+    return { lost: info };
+  });
+  try {
+    const result = await Promise.race([
+      work.then(
+        (value) => ({ value }),
+        (error: unknown) => ({ error }),
+      ),
+      timer.promise,
+      lost,
+    ]);
+    if (result === 'timeout') {
+      throw new GradeStop({
+        status: 'timeout',
+        message:
+          `The GPU did not finish ${what} within ${(timeoutMs / 1000).toFixed(1)} s, so grading ` +
+          'stopped. Look for a loop that does far more work than the exercise needs.',
+      });
+    }
+    if ('lost' in result) throw deviceLostStop(what, result.lost);
+    if ('error' in result) {
+      const info = lostDevices.get(device);
+      if (info) throw deviceLostStop(what, info);
+      throw result.error;
+    }
+    return result.value;
+  } finally {
+    timer.cancel();
+  }
+}
+
+/** Compiles `code`; errors become SourceDiagnostics through `map` (null: not the student's). */
+async function compile(
+  device: GPUDevice,
+  code: string,
+  map: (line: number, column: number) => { line: number; column: number } | null,
+  timeoutMs: number,
+): Promise<{ module: GPUShaderModule; diagnostics: SourceDiagnostic[] }> {
+  device.pushErrorScope('validation');
+  const module = device.createShaderModule({ code });
+  const scope = device.popErrorScope();
+  const info = await withDeviceGuards(
+    device,
+    timeoutMs,
+    'compiling your shader',
+    module.getCompilationInfo(),
+  );
+  await scope;
+  const diagnostics: SourceDiagnostic[] = [];
+  for (const message of info.messages) {
+    if (message.type === 'info') continue;
+    const mapped = map(message.lineNum, message.linePos);
+    diagnostics.push({
+      line: mapped?.line ?? 0,
+      column: mapped?.column ?? 0,
+      message: mapped ? message.message : `(in the grader's harness) ${message.message}`,
+      severity: message.type === 'error' ? 'error' : 'warning',
+    });
+  }
+  return { module, diagnostics };
+}
+
+async function createPipeline(
+  device: GPUDevice,
+  module: GPUShaderModule,
+): Promise<{ pipeline: GPUComputePipeline; error: string | null }> {
+  device.pushErrorScope('validation');
+  const pipeline = device.createComputePipeline({
+    layout: 'auto',
+    compute: { module, entryPoint: 'sbg_main' },
+  });
+  const error = await device.popErrorScope();
+  return { pipeline, error: error ? error.message : null };
+}
+
+function countLines(text: string): number {
+  return text.split('\n').length;
+}
+
+/**
+ * Imports are not linked for submissions: the helpers the statement allows are
+ * already in front of the code. When a submission imports something else, say so.
+ */
+function importNote(source: string, exercise: ExerciseDefinition): string {
+  const allowed = new Set((exercise.helpers?.imports ?? []).map((line) => line.trim()));
+  const imports = blankComments(source).match(/^[ \t]*import[^;\n]*;?/gm) ?? [];
+  const other = imports.map((line) => line.trim()).filter((line) => !allowed.has(line));
+  if (other.length === 0) return '';
+  const names = [...allowed].map((line) => line.replace(/^import\s+|;$/g, ''));
+  return (
+    ` (Imports other than the helpers this exercise provides are ignored: ${other.join(' ')}. ` +
+    `Available: ${names.length > 0 ? names.join(', ') : 'none; plain WGSL built-ins only'}.)`
+  );
+}
+
+interface PreparedStudent {
+  program: Program;
+  warnings: SourceDiagnostic[];
+}
+
+/** Signature check, instrumentation and compilation of a submission. */
+async function prepareStudent(
+  device: GPUDevice,
+  library: ShaderLibrary,
+  exercise: ExerciseDefinition,
+  source: string,
+  timeoutMs: number,
+): Promise<PreparedStudent> {
+  const expected = signatureText(exercise.subject);
+  const code = blankComments(source);
+  if (code.includes(RESERVED_PREFIX)) {
+    throw new GradeStop({
+      status: 'wrong-signature',
+      message: `Names starting with "${RESERVED_PREFIX}" are reserved for the grader; please rename them.`,
+    });
+  }
+  const helpers = exercise.helpers;
+  const prelude = helpers
+    ? await linkKernel(library, [...helpers.imports, helpers.wgsl].join('\n'))
+    : '';
+  const instrumented = instrumentLoops(
+    blankImports(source),
+    exercise.loopBudget ?? DEFAULT_LOOP_BUDGET,
+  );
+  const linesBefore = prelude ? countLines(prelude) : 0;
+  const studentLines = countLines(source);
+  const head = prelude ? `${prelude}\n` : '';
+  const mapper =
+    (insertions: readonly Insertion[]) =>
+    (line: number, column: number): { line: number; column: number } | null => {
+      if (line <= linesBefore || line > linesBefore + studentLines) return null;
+      return mapPosition(line, column, linesBefore, insertions);
+    };
+  // 1. The submission alone (with the helpers and the guard variables), so that its
+  //    own errors are reported before any signature or harness error.
+  const guards = `var<private> ${GUARD_COUNTER}: u32;\nvar<private> ${GUARD_FLAG}: u32;`;
+  const alone = await compile(
+    device,
+    `${head}${instrumented.source}\n${guards}\n`,
+    mapper(instrumented.insertions),
+    timeoutMs,
+  );
+  const errors = alone.diagnostics.filter((d) => d.severity === 'error');
+  if (errors.length > 0) {
+    const first = errors[0] as SourceDiagnostic;
+    throw new GradeStop({
+      status: 'compile-error',
+      diagnostics: alone.diagnostics,
+      message:
+        `Your shader does not compile: line ${first.line}, column ${first.column}: ${first.message}` +
+        importNote(source, exercise),
+    });
+  }
+  // 2. The signature, read from the source.
+  const functions = parseFunctions(source);
+  const found = functions.find((f) => f.name === exercise.subject.name);
+  if (!found) {
+    const names = functions.map((f) => f.name).join(', ');
+    throw new GradeStop({
+      status: 'wrong-signature',
+      message:
+        `The grader calls \`${expected}\`, but your code has no function named ` +
+        `${exercise.subject.name}${names ? ` (it defines ${names})` : ''}.`,
+    });
+  }
+  const want = exercise.subject.params;
+  const typesMatch =
+    found.params.length === want.length &&
+    found.params.every((p, i) => p.type === paramTypeText((want[i] as (typeof want)[number]).type));
+  if (!typesMatch || found.result !== exercise.subject.result) {
+    const got = `fn ${found.name}(${found.params.map((p) => `${p.name}: ${p.type}`).join(', ')})${found.result ? ` -> ${found.result}` : ''}`;
+    throw new GradeStop({
+      status: 'wrong-signature',
+      message: `The grader calls \`${expected}\`, but your function is \`${got}\`. Keep the signature of the starter code.`,
+    });
+  }
+  // 3. The submission with the harness after it (its line numbers stay the same).
+  const full = await compile(
+    device,
+    `${head}${instrumented.source}\n${harness(exercise)}\n`,
+    mapper(instrumented.insertions),
+    timeoutMs,
+  );
+  const fullErrors = full.diagnostics.filter((d) => d.severity === 'error');
+  if (fullErrors.length > 0) {
+    throw new GradeStop({
+      status: 'compile-error',
+      diagnostics: full.diagnostics,
+      message: `Your shader does not compile with the grader's harness: ${fullErrors[0]?.message ?? ''}`,
+    });
+  }
+  const { pipeline, error } = await createPipeline(device, full.module);
+  if (error) {
+    throw new GradeStop({
+      status: 'compile-error',
+      diagnostics: [{ line: 0, column: 0, message: error, severity: 'error' }],
+      message: `Your shader compiled but the pipeline could not be created: ${error}`,
+    });
+  }
+  return {
+    program: { pipeline, role: 'student' },
+    warnings: alone.diagnostics.filter((d) => d.severity === 'warning'),
+  };
+}
+
+const referencePrograms = new WeakMap<GPUDevice, Map<string, Promise<Program>>>();
+
+/** The reference solution linked with WESL against the library (cached per device). */
+function prepareReference(
+  device: GPUDevice,
+  library: ShaderLibrary,
+  exercise: ExerciseDefinition,
+  timeoutMs: number,
+): Promise<Program> {
+  let perDevice = referencePrograms.get(device);
+  if (!perDevice) {
+    perDevice = new Map();
+    referencePrograms.set(device, perDevice);
+  }
+  const key = `${exercise.id}\n${exercise.reference}`;
+  let program = perDevice.get(key);
+  if (!program) {
+    program = (async () => {
+      const importLine = /^[ \t]*import[^;\n]*;[ \t]*$/gm;
+      const imports = new Set([
+        ...(exercise.helpers?.imports ?? []),
+        ...(exercise.reference.match(importLine) ?? []).map((s) => s.trim()),
+      ]);
+      const root = [
+        ...imports,
+        exercise.reference.replace(importLine, ''),
+        exercise.helpers?.wgsl ?? '',
+        harness(exercise),
+      ].join('\n');
+      const code = await linkKernel(library, root);
+      const { module, diagnostics } = await compile(device, code, () => null, timeoutMs);
+      const error = diagnostics.find((d) => d.severity === 'error');
+      if (error) throw new Error(`reference solution of ${exercise.id}: ${error.message}`);
+      const created = await createPipeline(device, module);
+      if (created.error) throw new Error(`reference of ${exercise.id}: ${created.error}`);
+      return { pipeline: created.pipeline, role: 'reference' as const };
+    })();
+    perDevice.set(key, program);
+    program.catch(() => perDevice?.delete(key));
+  }
+  return program;
+}
+
+const scratch = new DataView(new ArrayBuffer(4));
+
+function encode(type: string, value: number): number {
+  if (type === 'f32') {
+    scratch.setFloat32(0, value);
+    return scratch.getUint32(0);
+  }
+  if (type === 'i32') return (value | 0) >>> 0;
+  return value >>> 0;
+}
+
+function decodeF32(bits: number): number {
+  scratch.setUint32(0, bits >>> 0);
+  return scratch.getFloat32(0);
+}
+
+/** Runs `calls` through a program; one f32 result per call. */
+async function run(
+  device: GPUDevice,
+  exercise: ExerciseDefinition,
+  program: Program,
+  calls: readonly (readonly number[])[],
+  seed: number,
+  timeoutMs: number,
+  what: string,
+): Promise<number[]> {
+  const types = exercise.subject.params
+    .filter((p) => p.type !== 'ptr<function, u32>')
+    .map((p) => p.type);
+  const stride = Math.max(argumentCount(exercise), 1);
+  const inputs = new Uint32Array(HEADER_WORDS + calls.length * stride);
+  inputs[0] = calls.length;
+  inputs[1] = seed >>> 0;
+  calls.forEach((args, i) => {
+    types.forEach((type, k) => {
+      inputs[HEADER_WORDS + i * stride + k] = encode(type, args[k] ?? 0);
+    });
+  });
+  const outputBytes = Math.max(8, calls.length * 8);
+  device.pushErrorScope('out-of-memory');
+  device.pushErrorScope('validation');
+  const input = device.createBuffer({
+    size: inputs.byteLength,
+    usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+  });
+  device.queue.writeBuffer(input, 0, inputs);
+  const output = device.createBuffer({
+    size: outputBytes,
+    usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
+  });
+  const readBack = device.createBuffer({
+    size: outputBytes,
+    usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+  });
+  const encoder = device.createCommandEncoder();
+  const pass = encoder.beginComputePass();
+  pass.setPipeline(program.pipeline);
+  pass.setBindGroup(
+    0,
+    device.createBindGroup({
+      layout: program.pipeline.getBindGroupLayout(0),
+      entries: [
+        { binding: 0, resource: { buffer: input } },
+        { binding: 1, resource: { buffer: output } },
+      ],
+    }),
+  );
+  pass.dispatchWorkgroups(Math.max(1, Math.ceil(calls.length / WORKGROUP_SIZE)));
+  pass.end();
+  encoder.copyBufferToBuffer(output, 0, readBack, 0, outputBytes);
+  device.queue.submit([encoder.finish()]);
+  const validation = await device.popErrorScope();
+  const memory = await device.popErrorScope();
+  try {
+    if (validation ?? memory) {
+      throw new Error(`grader dispatch failed: ${(validation ?? memory)?.message ?? ''}`);
+    }
+    await withDeviceGuards(device, timeoutMs, what, readBack.mapAsync(GPUMapMode.READ));
+    const words = new Uint32Array(readBack.getMappedRange().slice(0));
+    readBack.unmap();
+    const results: number[] = [];
+    let budgetHit = -1;
+    for (let i = 0; i < calls.length; i++) {
+      results.push(decodeF32(words[2 * i] ?? 0));
+      if (budgetHit < 0 && words[2 * i + 1] !== 0) budgetHit = i;
+    }
+    if (budgetHit >= 0 && program.role === 'student') {
+      const budget = exercise.loopBudget ?? DEFAULT_LOOP_BUDGET;
+      throw new GradeStop({
+        status: 'loop-budget',
+        message:
+          `While ${what}, your loops ran more than ${budget} iterations in one call ` +
+          `(arguments ${formatArgs(exercise, calls[budgetHit] ?? [])}), so the grader stopped them. ` +
+          'Check that every loop ends: its condition must become false, or a `break` must be reached.',
+      });
+    }
+    return results;
+  } finally {
+    input.destroy();
+    output.destroy();
+    readBack.destroy();
+  }
+}
+
+function formatNumber(value: number): string {
+  if (Number.isNaN(value)) return 'NaN';
+  if (!Number.isFinite(value)) return value > 0 ? 'inf' : '-inf';
+  if (value === 0) return '0';
+  const abs = Math.abs(value);
+  return abs >= 1e-3 && abs < 1e6 ? String(Number(value.toPrecision(7))) : value.toExponential(6);
+}
+
+function formatArgs(exercise: ExerciseDefinition, args: readonly number[]): string {
+  const names = exercise.subject.params
+    .filter((p) => p.type !== 'ptr<function, u32>')
+    .map((p) => p.name);
+  return names.map((name, i) => `${name} = ${formatNumber(args[i] ?? 0)}`).join(', ');
+}
+
+function withinTolerance(student: number, reference: number, rtol: number, atol: number): boolean {
+  if (Number.isNaN(student)) return false;
+  if (Number.isNaN(reference)) return false;
+  if (!Number.isFinite(reference) || !Number.isFinite(student)) return student === reference;
+  return Math.abs(student - reference) <= atol + rtol * Math.abs(reference);
+}
+
+interface CheckContext {
+  device: GPUDevice;
+  library: ShaderLibrary;
+  exercise: ExerciseDefinition;
+  student: Program;
+  timeoutMs: number;
+  seed: number;
+}
+
+async function runCasesCheck(
+  ctx: CheckContext,
+  check: CasesCheck,
+  visibility: 'public' | 'hidden',
+): Promise<CheckResult> {
+  const calls = check.cases.map((c) => c.args);
+  const what = `running the check "${check.name}"`;
+  const reference = await prepareReference(ctx.device, ctx.library, ctx.exercise, ctx.timeoutMs);
+  const expected = await run(
+    ctx.device,
+    ctx.exercise,
+    reference,
+    calls,
+    ctx.seed,
+    ctx.timeoutMs,
+    what,
+  );
+  const got = await run(
+    ctx.device,
+    ctx.exercise,
+    ctx.student,
+    calls,
+    ctx.seed,
+    ctx.timeoutMs,
+    what,
+  );
+  const failing = check.cases.findIndex(
+    (_, i) => !withinTolerance(got[i] ?? NaN, expected[i] ?? NaN, check.rtol, check.atol),
+  );
+  const samples = check.cases.map((c, i) => ({
+    args: `${c.label}: ${formatArgs(ctx.exercise, c.args)}`,
+    student: formatNumber(got[i] ?? NaN),
+    reference: formatNumber(expected[i] ?? NaN),
+  }));
+  const figure = check.figure
+    ? {
+        kind: 'series' as const,
+        x: check.cases.map((c) => c.args[check.figure?.argIndex ?? 0] ?? 0),
+        xLabel: check.figure.xLabel,
+        student: got,
+        reference: expected,
+      }
+    : undefined;
+  const pass = failing < 0;
+  let message = `All ${check.cases.length} cases agree with the reference within ${check.rtol} relative + ${check.atol} absolute.`;
+  if (!pass) {
+    const bad = check.cases[failing] as (typeof check.cases)[number];
+    const value = got[failing] ?? NaN;
+    const nan = Number.isNaN(value) ? ' Your function returned NaN (not a number) here. ' : ' ';
+    message =
+      `${bad.message ?? check.message}${nan}First failing case: ${bad.label} ` +
+      `(${formatArgs(ctx.exercise, bad.args)}): yours ${formatNumber(value)}, ` +
+      `reference ${formatNumber(expected[failing] ?? NaN)}; tolerance ${check.rtol} relative + ${check.atol} absolute.`;
+  }
+  return {
+    name: check.name,
+    visibility,
+    verdict: pass ? 'pass' : 'fail',
+    points: pass ? check.points : 0,
+    maxPoints: check.points,
+    message,
+    samples,
+    ...(figure ? { figure } : {}),
+  };
+}
+
+async function runChiSquareCheck(
+  ctx: CheckContext,
+  check: ChiSquareCheck,
+  visibility: 'public' | 'hidden',
+  index: number,
+): Promise<CheckResult> {
+  // Stratified uniforms: one ξ in each of n equal strata, jittered by the seed. For
+  // a monotone inverse-CDF sampler each equiprobable bin then receives n/bins ± 1
+  // samples whatever the seed, so the reference's statistic is ≤ bins²/n, far
+  // below any critical value used here; the test stays a valid (conservative) χ² test
+  // for any other sampler.
+  const uniform = seededUniforms(mixSeed(ctx.seed, index));
+  const calls: number[][] = [];
+  for (let k = 0; k < check.n; k++) {
+    const xi = Math.min(Math.fround((k + uniform()) / check.n), 1 - 2 ** -24);
+    calls.push(check.args(xi));
+  }
+  const what = `running the check "${check.name}"`;
+  const got = await run(
+    ctx.device,
+    ctx.exercise,
+    ctx.student,
+    calls,
+    ctx.seed,
+    ctx.timeoutMs,
+    what,
+  );
+  const bad = got.findIndex((v) => !Number.isFinite(v));
+  const test = chiSquareEquiprobable(
+    got.filter((v) => Number.isFinite(v)),
+    check.cdf,
+    check.bins,
+    check.alpha,
+  );
+  const edges = Array.from({ length: check.bins + 1 }, (_, j) => check.inverseCdf(j / check.bins));
+  const pass = bad < 0 && test.statistic <= test.critical;
+  const summary =
+    `χ² = ${test.statistic.toFixed(2)} with ${test.degreesOfFreedom} degrees of freedom ` +
+    `(critical value ${test.critical.toFixed(2)} at significance ${check.alpha}; p = ${test.pValue.toExponential(2)}), ` +
+    `${check.n} samples in ${check.bins} equiprobable bins.`;
+  const message = pass
+    ? `Your samples follow the analytic distribution: ${summary}`
+    : bad >= 0
+      ? `${check.message} Your function returned ${formatNumber(got[bad] ?? NaN)} for ${formatArgs(ctx.exercise, calls[bad] ?? [])}.`
+      : `${check.message} ${summary}`;
+  return {
+    name: check.name,
+    visibility,
+    verdict: pass ? 'pass' : 'fail',
+    points: pass ? check.points : 0,
+    maxPoints: check.points,
+    message,
+    figure: {
+      kind: 'histogram',
+      edges,
+      observed: test.observed,
+      expected: test.expected,
+      xLabel: check.xLabel,
+    },
+  };
+}
+
+const monteCarloRuns = new WeakMap<Program, Map<string, Promise<number[]>>>();
+
+async function runMonteCarloCheck(
+  ctx: CheckContext,
+  check: MonteCarloCheck,
+  visibility: 'public' | 'hidden',
+): Promise<CheckResult> {
+  // The mean and the variance checks of the same arguments share one run.
+  let perProgram = monteCarloRuns.get(ctx.student);
+  if (!perProgram) {
+    perProgram = new Map();
+    monteCarloRuns.set(ctx.student, perProgram);
+  }
+  const key = `${ctx.seed}\n${check.n}\n${check.args.join(',')}`;
+  let values = perProgram.get(key);
+  if (!values) {
+    const calls = Array.from({ length: check.n }, () => check.args);
+    values = run(
+      ctx.device,
+      ctx.exercise,
+      ctx.student,
+      calls,
+      // One stream family per argument list, so different cases are independent.
+      check.args.reduce(
+        (seed, arg) => mixSeed(seed, Math.round(arg * 1e6)),
+        mixSeed(ctx.seed, check.n),
+      ),
+      ctx.timeoutMs,
+      `running the check "${check.name}"`,
+    );
+    perProgram.set(key, values);
+  }
+  const got = await values;
+  const bad = got.findIndex((v) => !Number.isFinite(v));
+  const m = sampleMoments(got);
+  const critical = normalCritical(check.alpha);
+  const z =
+    check.kind === 'mean'
+      ? bernoulliMeanZ(m, check.expected)
+      : bernoulliVarianceZ(m, check.expected);
+  const pass = bad < 0 && Math.abs(z) <= critical;
+  const quantity =
+    check.kind === 'mean'
+      ? `mean ${formatNumber(m.mean)} against exp(−τ) = ${formatNumber(check.expected)}`
+      : `variance ${formatNumber(m.variance)} against T(1 − T) = ${formatNumber(check.expected * (1 - check.expected))}`;
+  const nonBinary = got.filter((v) => v !== 0 && v !== 1).length;
+  const summary =
+    `${check.n} calls (${formatArgs(ctx.exercise, check.args)}): ${quantity}, ` +
+    `z = ${z.toFixed(2)} (two-sided, pass when |z| ≤ ${critical.toFixed(2)}, significance ${check.alpha})` +
+    (nonBinary > 0 ? `; ${nonBinary} of the results were neither 0 nor 1.` : '.');
+  const message = pass
+    ? `Consistent with the exact value: ${summary}`
+    : bad >= 0
+      ? `${check.message} Your function returned ${formatNumber(got[bad] ?? NaN)}.`
+      : `${check.message} ${summary}`;
+  return {
+    name: check.name,
+    visibility,
+    verdict: pass ? 'pass' : 'fail',
+    points: pass ? check.points : 0,
+    maxPoints: check.points,
+    message,
+    samples: [
+      {
+        args: formatArgs(ctx.exercise, check.args),
+        student: check.kind === 'mean' ? formatNumber(m.mean) : formatNumber(m.variance),
+        reference:
+          check.kind === 'mean'
+            ? formatNumber(check.expected)
+            : formatNumber(check.expected * (1 - check.expected)),
+      },
+    ],
+  };
+}
+
+function runCheck(
+  ctx: CheckContext,
+  check: CheckSpec,
+  visibility: 'public' | 'hidden',
+  index: number,
+): Promise<CheckResult> {
+  switch (check.kind) {
+    case 'cases':
+      return runCasesCheck(ctx, check, visibility);
+    case 'chi-square':
+      return runChiSquareCheck(ctx, check, visibility, index);
+    case 'mean':
+    case 'variance':
+      return runMonteCarloCheck(ctx, check, visibility);
+  }
+}
+
+async function gradeProgram(
+  device: GPUDevice,
+  library: ShaderLibrary,
+  exercise: ExerciseDefinition,
+  prepare: (timeoutMs: number) => Promise<Program>,
+  options: GradeOptions,
+): Promise<GradeOutcome> {
+  const seed = (options.seed ?? DEFAULT_SEED) >>> 0;
+  const timeoutMs = options.timeoutMs ?? DEFAULT_TIMEOUT_MS;
+  const checks: { check: CheckSpec; visibility: 'public' | 'hidden' }[] = exercise.checks.map(
+    (check) => ({ check, visibility: 'public' }),
+  );
+  if (options.which === 'all') {
+    if (!exercise.hiddenChecks) {
+      throw new Error(
+        `exercise ${exercise.id} was loaded without its hidden checks; load it with loadFullExercise()`,
+      );
+    }
+    for (const check of exercise.hiddenChecks) checks.push({ check, visibility: 'hidden' });
+  }
+  try {
+    const student = await prepare(timeoutMs);
+    const ctx: CheckContext = { device, library, exercise, student, timeoutMs, seed };
+    const results: CheckResult[] = [];
+    for (const [index, { check, visibility }] of checks.entries()) {
+      options.signal?.throwIfAborted();
+      results.push(await runCheck(ctx, check, visibility, index));
+      options.onProgress?.(index + 1, checks.length);
+    }
+    return {
+      status: 'graded',
+      checks: results,
+      score: results.reduce((sum, r) => sum + r.points, 0),
+      maxScore: results.reduce((sum, r) => sum + r.maxPoints, 0),
+      seed,
+    };
+  } catch (error) {
+    if (error instanceof GradeStop) return error.outcome;
+    throw error;
+  }
+}
+
+/**
+ * Grades `source` (the student's WGSL) for an exercise (its id, or the definition
+ * loadExercise() returned). `options.which`: 'public' runs the public checks (the
+ * page); 'all' also the hidden ones (needs a definition with hiddenChecks, as
+ * loadFullExercise() in src/grading/node.ts returns). Never throws for anything the
+ * submission does: compile errors, wrong signatures, endless loops, GPU timeouts and
+ * device loss come back as the outcome's status. Throws only for grader failures
+ * (unknown exercise, a broken reference).
+ */
+export async function gradeSubmission(
+  device: GPUDevice,
+  library: ShaderLibrary,
+  exercise: string | ExerciseDefinition,
+  source: string,
+  options: GradeOptions,
+): Promise<GradeOutcome> {
+  const definition = typeof exercise === 'string' ? await loadExercise(exercise) : exercise;
+  return gradeProgram(
+    device,
+    library,
+    definition,
+    async (timeoutMs) => {
+      const prepared = await prepareStudent(device, library, definition, source, timeoutMs);
+      return prepared.program;
+    },
+    options,
+  );
+}
+
+/**
+ * Grades the reference solution itself with the same checks: deterministic checks
+ * compare it with itself (they must pass trivially), statistical checks test it
+ * against the analytic answer, so this is the grader's own sanity check.
+ */
+export function gradeReference(
+  device: GPUDevice,
+  library: ShaderLibrary,
+  exercise: ExerciseDefinition,
+  options: GradeOptions,
+): Promise<GradeOutcome> {
+  return gradeProgram(
+    device,
+    library,
+    exercise,
+    (timeoutMs) => prepareReference(device, library, exercise, timeoutMs),
+    options,
+  );
+}

@@ -1,0 +1,35 @@
+// `grade --self-test` as part of `npm test`: the same function the command line runs.
+// Every reference solution scores full marks, every known-wrong submission gets its
+// expected outcome, and grades agree under three seeds.
+import { describe, expect, it } from 'vitest';
+import { EXERCISE_IDS } from '../../exercises/index.ts';
+import { runSelfTest } from '../../src/grading/selfTest.ts';
+import { nodeDevice } from '../support/nodeGpu.ts';
+import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
+
+describe('grade --self-test', () => {
+  it('covers the exercises the issue asks for', () => {
+    for (const id of [
+      'beer-law',
+      'hg-eval',
+      'hg-sample',
+      'raymarch-exact',
+      'delta-tracking',
+      'single-scatter-shadow',
+      'dipole-rd',
+    ])
+      expect(EXERCISE_IDS).toContain(id);
+  });
+
+  it('passes for every exercise, reference and known-wrong submission', async () => {
+    const device = await nodeDevice();
+    const lines = await runSelfTest(device, SHADER_LIBRARY);
+    const failures = lines.filter((line) => !line.ok);
+    expect(
+      failures,
+      failures.map((f) => `${f.exercise} ${f.subject}: ${f.detail}`).join('\n'),
+    ).toEqual([]);
+    // A reference per exercise plus at least three wrong submissions each.
+    expect(lines.length).toBeGreaterThanOrEqual(EXERCISE_IDS.length * 4);
+  }, 120_000);
+});
