@@ -1,12 +1,16 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=transmittance,estimators,subsurface,widgets,scenes runs a subset.
+// --only=transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading
+// runs a subset.
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
 import { benchEstimators } from './estimators.ts';
+import { benchGrading } from './grading.ts';
+import { benchPhotons } from './photons.ts';
 import { benchScenes } from './scenes.ts';
 import { benchSubsurface } from './subsurface.ts';
+import { benchTranslucent } from './translucent.ts';
 import { benchTransmittance } from './transmittance.ts';
 import { benchWidgets } from './widgets.ts';
 import { printTable, saveTables, type BenchTable } from './table.ts';
@@ -39,6 +43,16 @@ if (wanted('subsurface'))
       repeats: 5,
     })),
   );
+if (wanted('translucent'))
+  tables.push(
+    ...(await benchTranslucent(device, {
+      size: quick ? 32 : 96,
+      spp: quick ? 64 : 1024,
+      sppPerBatch: quick ? 16 : 32,
+      repeats: quick ? 3 : 9,
+    })),
+  );
+if (wanted('grading')) tables.push(await benchGrading(device, { repeats: quick ? 3 : 9 }));
 if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
 if (wanted('scenes'))
   tables.push(
@@ -47,6 +61,15 @@ if (wanted('scenes'))
       spp: quick ? 16 : 64,
       samplesPerPass: quick ? 4 : 8,
       cpuSpp: quick ? 1 : 4,
+    }),
+  );
+if (wanted('photons'))
+  tables.push(
+    await benchPhotons(device, {
+      photonCounts: quick ? [4096, 65536] : [4096, 16384, 65536, 262144],
+      radii: quick ? [0.04] : [0.08, 0.04, 0.02],
+      spp: quick ? [4, 64] : [4, 16, 64, 256, 1024],
+      repeats: quick ? 1 : 3,
     }),
   );
 for (const table of tables) printTable(table);

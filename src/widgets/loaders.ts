@@ -29,6 +29,10 @@ export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () 
     const module = await import('./dipole-profile/element.ts');
     return { define: module.defineDipoleProfile };
   },
+  'translucent-render': async () => {
+    const module = await import('./translucent-render/element.ts');
+    return { define: module.defineTranslucentRender };
+  },
   'inverse-render': async () => {
     const module = await import('./inverse-render/element.ts');
     return { define: module.defineInverseRender };
@@ -44,5 +48,13 @@ export const WIDGET_LOADERS: Readonly<Record<string, () => Promise<{ define: () 
   'volume-path-tracer': async () => {
     const module = await import('./volume-path-tracer/element.ts');
     return { define: module.defineVolumePathTracer };
+  },
+  'photon-map': async () => {
+    const module = await import('./photon-map/element.ts');
+    return { define: module.definePhotonMap };
+  },
+  exercise: async () => {
+    const module = await import('./exercise/element.ts');
+    return { define: module.defineExercise };
   },
 };

@@ -251,6 +251,14 @@ export const DECK: readonly DeckSlide[] = [
     chapter: '10-multiple-scattering',
   },
   {
+    title: 'Volume caustics: photon mapping against path tracing',
+    widget: 'photon-map',
+    attributes: { photons: '65536', radius: '0.04' },
+    caption:
+      'A glass ball focuses a small sun into fog. Photon mapping resolves the focused cone of light in the time path tracing needs to show noise; shrink the radius and its blur (bias) turns into noise (variance). The sweep plots both errors against time.',
+    chapter: '10-multiple-scattering',
+  },
+  {
     title: 'Skin: the dipole against Monte Carlo',
     widget: 'dipole-profile',
     attributes: { material: 'skin1' },
@@ -264,6 +272,14 @@ export const DECK: readonly DeckSlide[] = [
     attributes: { material: 'ketchup', exposure: '1' },
     caption:
       'Ketchup absorbs green and blue within a millimetre and lets red wander a centimetre: the glow is red. Press 2 for marble, whose three channels spread alike into a broad white halo.',
+    chapter: '11-subsurface-scattering',
+  },
+  {
+    title: 'A translucent sphere: Lambert, dipole BSSRDF, path tracing',
+    widget: 'translucent-render',
+    attributes: { material: 'skin1', radius: '5' },
+    caption:
+      'The same skin sphere as a Lambertian surface, with the dipole BSSRDF (Jensen–Buhler octree gather) and path traced. Light bleeds past the terminator only with the BSSRDF and the path tracer; drag ε and watch the nodes visited and the error against the reference.',
     chapter: '11-subsurface-scattering',
   },
 ];

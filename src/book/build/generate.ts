@@ -50,6 +50,7 @@ export function buildBook(root: string): Book {
       chapter.number,
       chapterPath(chapter),
       chapter.file,
+      join(root, 'exercises'),
     );
     for (const equation of result.equations) {
       const existing = equations.get(equation.label);

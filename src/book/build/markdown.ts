@@ -1,12 +1,14 @@
 // Markdown → HTML for one chapter, with math typeset by KaTeX at build time
 // (no math JavaScript at run time), numbered equation labels, heading anchors for
 // the table of contents, quizzes, and no-JavaScript fallbacks inside widgets.
+import { fileURLToPath } from 'node:url';
 import katex from 'katex';
 import MarkdownIt from 'markdown-it';
 import anchor from 'markdown-it-anchor';
 import { tex } from '@mdit/plugin-tex';
 import { parseQuiz } from './quiz.ts';
 import { WIDGET_CATALOG } from '../../widgets/catalog.ts';
+import { embedExercises } from './exercises.ts';
 
 export interface TocEntry {
   level: 2 | 3;
@@ -164,6 +166,7 @@ export function renderChapterBody(
   chapterNumber: number,
   page: string,
   file: string,
+  exercisesDir = fileURLToPath(new URL('../../../exercises', import.meta.url)),
 ): RenderedChapter {
   const env = createRenderEnv(chapterNumber, page, file);
   const tokens = md.parse(body, env);
@@ -178,6 +181,10 @@ export function renderChapterBody(
   let html = md.renderer.render(tokens, md.options, env);
 
   const widgets: string[] = [];
+  // Exercises first: their statement goes inside the element (see exercises.ts).
+  const exercises = embedExercises(md, html, env, exercisesDir);
+  html = exercises.html;
+  if (exercises.ids.length > 0) widgets.push('exercise');
   html = html.replace(/<(sb-[a-z0-9-]+)([^>]*)>\s*<\/\1>/g, (_all, tag: string, attrs: string) => {
     const name = tag.slice(3);
     if (!WIDGET_CATALOG[name]) {

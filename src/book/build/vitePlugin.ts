@@ -17,9 +17,13 @@ export function scatterbookChapters(root: string): Plugin {
     },
     configureServer(server) {
       const chapters = join(root, 'chapters');
-      server.watcher.add(chapters);
+      // Exercise statements and starters are rendered into the chapters too.
+      const exercises = join(root, 'exercises');
+      server.watcher.add([chapters, exercises]);
       server.watcher.on('change', (file) => {
-        if (!file.startsWith(chapters) || !file.endsWith('.md')) return;
+        const statement =
+          file.startsWith(exercises) && (file.endsWith('.md') || file.endsWith('.wgsl'));
+        if (!statement && (!file.startsWith(chapters) || !file.endsWith('.md'))) return;
         try {
           writeBook(root);
           server.ws.send({ type: 'full-reload' });
