@@ -34,10 +34,10 @@ import {
   bernoulliVarianceZ,
   chiSquareEquiprobable,
   mixSeed,
-  normalCritical,
   sampleMoments,
   seededUniforms,
 } from './stats.ts';
+import { normalCritical } from '../statistics/distributions.ts';
 import type { CheckResult, GradeOptions, GradeOutcome, SourceDiagnostic } from './types.ts';
 
 export const DEFAULT_SEED = 20261123;

@@ -4,14 +4,16 @@ import { describe, expect, it } from 'vitest';
 import {
   bernoulliMeanZ,
   bernoulliVarianceZ,
-  chiSquareCritical,
   chiSquareEquiprobable,
-  chiSquareSurvival,
-  normalCritical,
   sampleMoments,
   seededUniforms,
-  twoSidedNormalTail,
 } from '../../src/grading/stats.ts';
+import {
+  chiSquareCritical,
+  chiSquareSurvival,
+  normalCritical,
+  twoSidedNormalTail,
+} from '../../src/statistics/distributions.ts';
 import { hgCdf, hgInverseCdf } from '../../exercises/hg-sample/exercise.ts';
 import { opticalDepth } from '../../exercises/delta-tracking/exercise.ts';
 

@@ -8,8 +8,6 @@ import { sampleHistogramCpu } from '../../src/widgets/hg-lobe/cpuBackend.ts';
 import {
   BIN_COUNT,
   binEdge,
-  chiSquareCritical,
-  chiSquareTail,
   chiSquareTest,
   hgBinProbabilities,
   hgCdf,
@@ -18,6 +16,7 @@ import {
   sphereIntegral,
   inputsFrom,
 } from '../../src/widgets/hg-lobe/model.ts';
+import { chiSquareCritical, chiSquareSurvival } from '../../src/statistics/distributions.ts';
 
 const G_VALUES = [-0.99, -0.6, -0.3, -1e-7, 0, 1e-7, 0.3, 0.6, 0.9, 0.99];
 
@@ -97,13 +96,14 @@ describe('analytic bin probabilities', () => {
 
 describe('chi-square machinery', () => {
   it('the critical value at α = 0.01 for df = 63 is 92.01 (tables) and for df = 1 is 6.635', () => {
-    expect(chiSquareCritical(63, 0.01)).toBeCloseTo(92.01, 2);
-    expect(chiSquareCritical(1, 0.01)).toBeCloseTo(6.635, 3);
-    expect(chiSquareCritical(10, 0.05)).toBeCloseTo(18.307, 3);
+    expect(chiSquareCritical(0.01, 63)).toBeCloseTo(92.01, 2);
+    expect(chiSquareCritical(0.01, 1)).toBeCloseTo(6.635, 3);
+    expect(chiSquareCritical(0.05, 10)).toBeCloseTo(18.307, 3);
   });
 
   it('the tail of χ²₂ is exp(−x/2) (closed form)', () => {
-    for (const x of [0.1, 1, 5, 20]) expect(chiSquareTail(x, 2)).toBeCloseTo(Math.exp(-x / 2), 12);
+    for (const x of [0.1, 1, 5, 20])
+      expect(chiSquareSurvival(x, 2)).toBeCloseTo(Math.exp(-x / 2), 12);
   });
 
   it('computes Pearson’s statistic on known counts: equal counts give 0, a known deviation its value', () => {

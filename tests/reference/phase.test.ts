@@ -27,6 +27,7 @@ import { runCompute } from '../../src/gpu/compute.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 import { f32ToBits } from '../support/f32.ts';
+import { chiSquareSurvival } from '../../src/statistics/distributions.ts';
 
 // ---------------------------------------------------------------------------
 // Numerical tools written for this file: Gauss–Legendre quadrature and the
@@ -80,58 +81,6 @@ function integrateFromPeak(f: (t: number) => number, upper = 2): number {
 /** HG at distance t from its peak (t = 1 − μ for g ≥ 0, 1 + μ for g < 0). */
 const hgFromPeak = (g: number, t: number): number =>
   g >= 0 ? hgEvalTerms(g, t, 2 - t) : hgEvalTerms(g, 2 - t, t);
-
-function logGamma(x: number): number {
-  // Lanczos approximation, g = 7, n = 9 (relative error < 1e-15 for x > 0).
-  const c = [
-    0.9999999999998099, 676.5203681218851, -1259.1392167224028, 771.3234287776531,
-    -176.6150291621406, 12.507343278686905, -0.13857109526572012, 9.984369578019572e-6,
-    1.5056327351493116e-7,
-  ];
-  const z = x - 1;
-  let sum = c[0] as number;
-  for (let i = 1; i < 9; i++) sum += (c[i] as number) / (z + i);
-  const t = z + 7.5;
-  return 0.5 * Math.log(2 * Math.PI) + (z + 0.5) * Math.log(t) - t + Math.log(sum);
-}
-
-/** Q(a, x) = Γ(a, x)/Γ(a): series below a + 1, Lentz continued fraction above. */
-function regularizedGammaQ(a: number, x: number): number {
-  if (x <= 0) return 1;
-  const prefactor = Math.exp(-x + a * Math.log(x) - logGamma(a));
-  if (x < a + 1) {
-    let term = 1 / a;
-    let sum = term;
-    for (let n = 1; n < 10_000; n++) {
-      term *= x / (a + n);
-      sum += term;
-      if (Math.abs(term) < Math.abs(sum) * 1e-16) break;
-    }
-    return 1 - sum * prefactor;
-  }
-  const tiny = 1e-300;
-  let b = x + 1 - a;
-  let c = 1 / tiny;
-  let d = 1 / b;
-  let h = d;
-  for (let i = 1; i < 10_000; i++) {
-    const an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (Math.abs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (Math.abs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const delta = d * c;
-    h *= delta;
-    if (Math.abs(delta - 1) < 1e-16) break;
-  }
-  return prefactor * h;
-}
-
-/** P(χ²_df ≥ statistic). */
-const chiSquarePValue = (statistic: number, df: number): number =>
-  regularizedGammaQ(df / 2, statistic / 2);
 
 /** Pearson's statistic of counts against equal expected counts. */
 function chiSquareUniform(bins: readonly number[]): number {
@@ -508,9 +457,9 @@ describe('HG and Rayleigh sampling on the float64 twin', () => {
   });
 
   it(`chi-square self-check: P(χ²₆₃ ≥ 92.01) = 0.01 (the critical value tests/reference/rng.test.ts uses)`, () => {
-    expect(chiSquarePValue(92.01, 63)).toBeCloseTo(0.01, 4);
-    expect(chiSquarePValue(0, 99)).toBe(1);
-    expect(chiSquarePValue(99, 99)).toBeGreaterThan(0.4);
+    expect(chiSquareSurvival(92.01, 63)).toBeCloseTo(0.01, 4);
+    expect(chiSquareSurvival(0, 99)).toBe(1);
+    expect(chiSquareSurvival(99, 99)).toBeGreaterThan(0.4);
   });
 
   const TWIN_SAMPLES = 100_000;
@@ -524,7 +473,7 @@ describe('HG and Rayleigh sampling on the float64 twin', () => {
         const bin = binOf(hgCdfFromPeak(g, g >= 0 ? s.oneMinusMu : s.onePlusMu));
         bins[bin] = (bins[bin] ?? 0) + 1;
       }
-      expect(chiSquarePValue(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
+      expect(chiSquareSurvival(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
     });
   }
 
@@ -536,7 +485,7 @@ describe('HG and Rayleigh sampling on the float64 twin', () => {
       const bin = binOf(rayleighCdf(-dot(OBLIQUE_WO, wi)));
       bins[bin] = (bins[bin] ?? 0) + 1;
     }
-    expect(chiSquarePValue(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
+    expect(chiSquareSurvival(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
   });
 
   it(`uniform sphere: ${TWIN_SAMPLES} directions are uniform in (z, φ) (chi-square, 10 × 10 bins)`, () => {
@@ -546,7 +495,7 @@ describe('HG and Rayleigh sampling on the float64 twin', () => {
       const w = sampleUniformSphere([rngNextFloat(state), rngNextFloat(state)]);
       bins[sphereBin(w)] = (bins[sphereBin(w)] ?? 0) + 1;
     }
-    expect(chiSquarePValue(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
+    expect(chiSquareSurvival(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
   });
 });
 
@@ -641,7 +590,7 @@ describe(`HG, Rayleigh and uniform-sphere sampling on the GPU (${GPU_SAMPLES} sa
         const bin = binOf(hgCdfFromPeak(gf, t));
         bins[bin] = (bins[bin] ?? 0) + 1;
       }
-      expect(chiSquarePValue(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
+      expect(chiSquareSurvival(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
     });
 
     it(`HG g = ${g}: ⟨−wo·wi⟩ = g within 5σ, σ² = (1 − g²)/(3N); median within 5σ of g(3 − g²)/2`, () => {
@@ -701,7 +650,7 @@ describe(`HG, Rayleigh and uniform-sphere sampling on the GPU (${GPU_SAMPLES} sa
       if (Math.abs((rayleigh[4 * i + 1] as number) - 1) > 4e-6)
         expect.fail(`sample ${i}: |wi|² = ${rayleigh[4 * i + 1]}`);
     }
-    expect(chiSquarePValue(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
+    expect(chiSquareSurvival(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
     // ⟨μ²⟩ = 2/5 for Rayleigh ⇒ σ = √(0.4/N).
     expect(Math.abs(sum / GPU_SAMPLES)).toBeLessThan(5 * Math.sqrt(0.4 / GPU_SAMPLES));
   });
@@ -714,6 +663,6 @@ describe(`HG, Rayleigh and uniform-sphere sampling on the GPU (${GPU_SAMPLES} sa
         expect.fail(`sample ${i}: |w| = ${Math.hypot(...w)}`);
       bins[sphereBin(w)] = (bins[sphereBin(w)] ?? 0) + 1;
     }
-    expect(chiSquarePValue(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
+    expect(chiSquareSurvival(chiSquareUniform(bins), BINS - 1)).toBeGreaterThan(ALPHA);
   });
 });

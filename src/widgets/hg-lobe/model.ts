@@ -3,6 +3,7 @@
 // test of a histogram against them, the normalisation integral of the float64
 // twin, and the layout of the polar picture shared by the WGSL and 2D-canvas paths.
 import { hgEval, phaseIsotropic, rayleighEval } from '../../reference/phase.ts';
+import { chiSquareCritical, chiSquareSurvival, logGamma } from '../../statistics/distributions.ts';
 import type { ParameterValues } from '../parameters.ts';
 
 /** Equal-width bins of μ ∈ [−1, 1]; the kernel's histogram has the same count. */
@@ -81,79 +82,6 @@ export function hgBinProbabilities(g: number): Float64Array {
   return Float64Array.from({ length: BIN_COUNT }, (_, k) => edges[k + 1]! - edges[k]!);
 }
 
-/**
- * ln Γ(x) for x > 0 (Lanczos, g = 7, n = 9 coefficients; relative error ~1e-15),
- * for the chi-square tail probability below.
- */
-function logGamma(x: number): number {
-  const c = [
-    0.99999999999980993, 676.5203681218851, -1259.1392167224028, 771.32342877765313,
-    -176.61502916214059, 12.507343278686905, -0.13857109526572012, 9.9843695780195716e-6,
-    1.5056327351493116e-7,
-  ];
-  if (x < 0.5) return Math.log(Math.PI / Math.sin(Math.PI * x)) - logGamma(1 - x);
-  const z = x - 1;
-  let sum = c[0]!;
-  for (let i = 1; i < 9; i++) sum += c[i]! / (z + i);
-  const t = z + 7.5;
-  return 0.5 * Math.log(2 * Math.PI) + (z + 0.5) * Math.log(t) - t + Math.log(sum);
-}
-
-/**
- * Upper regularized incomplete gamma Q(a, x) = Γ(a, x)/Γ(a): the series for
- * x < a + 1, Lentz's continued fraction otherwise (Numerical Recipes §6.2). Each
- * loop stops at 1e-15 relative or after 1000 terms, far more than either needs
- * for a ≤ 32.
- */
-export function gammaQ(a: number, x: number): number {
-  if (x <= 0) return 1;
-  const logPrefactor = -x + a * Math.log(x) - logGamma(a);
-  if (x < a + 1) {
-    let term = 1 / a;
-    let sum = term;
-    for (let n = 1; n < 1000 && Math.abs(term) > 1e-15 * Math.abs(sum); n++) {
-      term *= x / (a + n);
-      sum += term;
-    }
-    return Math.max(0, 1 - sum * Math.exp(logPrefactor));
-  }
-  const tiny = 1e-300;
-  let b = x + 1 - a;
-  let c = 1 / tiny;
-  let d = 1 / b;
-  let h = d;
-  for (let i = 1; i < 1000; i++) {
-    const an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (Math.abs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (Math.abs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const delta = d * c;
-    h *= delta;
-    if (Math.abs(delta - 1) < 1e-15) break;
-  }
-  return Math.exp(logPrefactor) * h;
-}
-
-/** P(χ²_df > x), the p-value of a chi-square statistic. */
-export function chiSquareTail(x: number, df: number): number {
-  return gammaQ(df / 2, x / 2);
-}
-
-/** The x with P(χ²_df > x) = alpha, by bisection on the tail (monotone in x). */
-export function chiSquareCritical(df: number, alpha: number): number {
-  let lo = 0;
-  let hi = df + 20 * Math.sqrt(2 * df) + 50;
-  for (let i = 0; i < 200; i++) {
-    const mid = 0.5 * (lo + hi);
-    if (chiSquareTail(mid, df) > alpha) lo = mid;
-    else hi = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 /** Smallest expected count a cell may have; sparser cells are pooled (as pbrt-v4's chi2test does). */
 export const MIN_EXPECTED = 5;
 /** Significance of the widget's test (one test per frame). */
@@ -204,12 +132,12 @@ export function chiSquareTest(
     cells += 1;
   }
   const df = Math.max(cells - 1, 1);
-  const pValue = chiSquareTail(statistic, df);
+  const pValue = chiSquareSurvival(statistic, df);
   return {
     statistic,
     df,
     pValue,
-    critical: chiSquareCritical(df, alpha),
+    critical: chiSquareCritical(alpha, df),
     passes: pValue > alpha,
     pooled,
   };
