@@ -1,7 +1,9 @@
 // <sb-photon-map> in Chromium with WebGPU (SwiftShader), at cheap settings (8192
 // photons): the photon view and both images are drawn, both errors and times are
 // shown, changing the gather radius from the keyboard changes the photon-mapped
-// image and the URL, and presentation mode with a preset works from the keyboard.
+// image and the URL, presentation mode with a preset works from the keyboard, and
+// the sweep draws its three series (fixed radius, progressive radius, path tracing)
+// and stops on Cancel after its first points (never waiting for the whole sweep).
 import { expect, test, type Locator } from '@playwright/test';
 import {
   canvasStats,
@@ -37,6 +39,10 @@ test('draws photons, photon map and path tracing with errors and times; the radi
   // "3,594 from 8,192 emitted": about 0.44 stored per emitted photon.
   const stored = Number((await readout(widget, 'stored')).split(' ')[0]!.replace(/,/g, ''));
   expect(stored).toBeGreaterThan(1000);
+  // The sweep's readouts wait for it: a plateau for the fixed radius, fitted rates
+  // for progressive photon mapping and path tracing.
+  for (const key of ['plateau', 'progressive', 'pt-rate'])
+    expect(await readout(widget, key)).toBe('run the sweep');
 
   const before = await canvasStats(canvases.nth(1));
   const rendered = Number(await widget.getAttribute('data-rendered'));
@@ -61,4 +67,32 @@ test('presentation mode: F enters, a number key recalls a preset, Esc leaves', a
   await expect(control(widget, 'photons')).toHaveValue('8192');
   await page.keyboard.press('Escape');
   await expect(shell).not.toHaveClass(/is-presenting/);
+});
+
+test('the sweep plots fixed-radius, progressive and path-traced series; Cancel stops it', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openWidget(page, { photons: '8192', radius: '0.08' });
+  await widget.getByRole('button', { name: /Run error-vs-time sweep/ }).click();
+  await expect(widget).toHaveAttribute('data-sweeping', '');
+  // n = 1 measured for all three series (3 of 21 steps): every curve has a point.
+  await expect
+    .poll(async () => Number(await widget.locator('.sb-sweep progress').getAttribute('value')), {
+      timeout: 20_000,
+    })
+    .toBeGreaterThanOrEqual(3);
+  const legend = widget.locator('.sb-plot .u-legend .u-series');
+  // uPlot's legend lists x first, then one entry per series.
+  await expect(legend).toHaveCount(4);
+  const labels = (await legend.allTextContents()).slice(1).join(' | ');
+  expect(labels).toContain('photon mapping, r = 0.08 m');
+  expect(labels).toContain('progressive, r = 0.08 m·(N/8192)^(−1/7)');
+  expect(labels).toContain('path tracing');
+  for (const key of ['plateau', 'progressive', 'pt-rate'])
+    expect(await readout(widget, key)).toBe('sweeping…');
+  await widget.getByRole('button', { name: 'Cancel' }).click();
+  await expect(widget.locator('.sb-sweep-status')).toHaveText('Sweep cancelled.');
+  await expect(widget).not.toHaveAttribute('data-sweeping');
+  expect(errors).toEqual([]);
 });

@@ -35,6 +35,7 @@ import {
   gridFor,
   pathTraceCpu,
   photonMapImageCpu,
+  progressiveRadius,
   tracePhotonsCpu,
   type PhotonSet,
 } from '../../src/widgets/photon-map/model.ts';
@@ -310,6 +311,23 @@ describe('density estimation of a known photon distribution (volume radiance est
     expect(biases[2]!).toBeLessThan(0.02);
     // … and at the largest N with the smallest r the whole error is small.
     expect(errors[2]!).toBeLessThan(0.05);
+  });
+});
+
+describe('progressive radius schedule r_k = r₀ (N_k/N₀)^(−1/7)', () => {
+  it('passes through (N₀, r₀), halves per 128× photons and balances bias² against variance', () => {
+    expect(progressiveRadius(0.04, 65536, 65536)).toBe(0.04);
+    expect(progressiveRadius(0.04, 4096, 4096 * 128)).toBeCloseTo(0.02, 12);
+    expect(progressiveRadius(0.04, 65536, 4096)).toBeCloseTo(0.04 * 16 ** (1 / 7), 12);
+    // Chapter 10, "Bias versus variance": MSE = a·r⁴ + b/(N r³). Along the schedule
+    // N r⁷ is constant, so both terms fall as N^(−4/7) and the RMSE as N^(−2/7).
+    const counts = [4096, 16384, 65536, 262144];
+    const radii = counts.map((n) => progressiveRadius(0.06, 4096, n));
+    for (const [k, n] of counts.entries())
+      expect(n * radii[k]! ** 7).toBeCloseTo(4096 * 0.06 ** 7, 15);
+    const rmse = counts.map((n, k) => Math.sqrt(3 * radii[k]! ** 4 + 2e-9 / (n * radii[k]! ** 3)));
+    const slope = Math.log(rmse[3]! / rmse[0]!) / Math.log(counts[3]! / counts[0]!);
+    expect(slope).toBeCloseTo(-2 / 7, 12);
   });
 });
 

@@ -5,10 +5,14 @@
 // (passes of PT_PASS_SPP paths per pixel until its accumulated time reaches the photon
 // map's). Both images show their RMSE against a converged path-traced reference
 // (public/photon-map/reference.bin, scripts/photon-map-reference.ts). The sweep plots
-// error against time: photon mapping over N = 4096·n at the current radius (its
-// error stops falling once the bias of the radius dominates) and path tracing over
-// 4·n paths per pixel (its error falls as t^−½). Without WebGPU the float64 twin
-// renders a 32×24 image with at most CPU_MAX_PHOTONS photons and says so.
+// error against time for three series: photon mapping over N = 4096·n at the current
+// radius (its error stops falling once the bias of the radius dominates, so it gets
+// no power law, only its plateau: the error at the largest N and its change over the
+// last 4× N), progressive photon mapping with r = r₀ (N/N₀)^(−1/7) through the
+// current (N₀, r₀) (chapter 10, "Bias versus variance": RMSE ∝ N^(−2/7), fitted vs N
+// and vs time), and path tracing over 4·n paths per pixel (fitted vs time, t^−½).
+// Without WebGPU the float64 twin renders a 32×24 image with at most
+// CPU_MAX_PHOTONS photons and says so.
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
@@ -17,7 +21,7 @@ import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
 import { imageCanvas, imageFigure, imagePanel, niceScale } from '../base/imagePanel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
-import { logLogSlope, SweepControls, type SweepPoint } from '../base/sweep.ts';
+import { SweepControls, type SweepPoint } from '../base/sweep.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { pathTraceGpu, renderPhotonMapGpu } from './gpuBackend.ts';
 import {
@@ -34,6 +38,7 @@ import {
   parseReference,
   pathTraceCpu,
   photonMapImageCpu,
+  progressiveRadius,
   rmse,
   scale,
   sub,
@@ -42,6 +47,7 @@ import {
   type PhotonReference,
 } from './model.ts';
 import { PHOTON_MAP } from './schema.ts';
+import { summariseSweep } from './summary.ts';
 
 const READOUT_ROWS = [
   ['stored', 'Photons stored in the fog'],
@@ -50,8 +56,11 @@ const READOUT_ROWS = [
   ['pt-spp', 'Path tracing, paths per pixel in equal time'],
   ['pt-time', 'Path tracing time'],
   ['pt-error', 'Path tracing RMSE vs reference'],
-  ['slope', 'Sweep: fitted slopes, error ∝ time^p'],
+  ['plateau', 'Sweep, fixed r: plateau'],
+  ['progressive', 'Sweep, progressive r ∝ N^−1/7: RMSE ∝ N^p'],
+  ['pt-rate', 'Sweep, path tracing: RMSE ∝ time^p'],
 ] as const;
+const SWEEP_ROWS = ['plateau', 'progressive', 'pt-rate'] as const;
 
 const VIEW_SIZE = { width: 256, height: 192 } as const;
 const VIEW_PHOTONS = 16384;
@@ -62,7 +71,10 @@ const CPU_MAX_PHOTONS = 8192;
 /** Paths per pixel the CPU path tracer stops at even if it has time left. */
 const CPU_MAX_SPP = 4096;
 const SWEEP_POINTS = [1, 2, 4, 8, 16, 32, 64] as const;
-const COLOURS = { pm: '#d9822b', pt: '#2b7bb9' } as const;
+/** Mid-tone colours that read on the light and the dark page; the progressive curve is also dashed. */
+const COLOURS = { pm: '#d9822b', ppm: '#9b72e0', pt: '#5b8def' } as const;
+/** Photons per sweep step: N = SWEEP_PHOTONS·n. */
+const SWEEP_PHOTONS = 4096;
 
 interface Images {
   width: number;
@@ -145,7 +157,7 @@ export class PhotonMapElement extends WidgetElement {
       {
         name: 'n',
         buttonText: 'Run error-vs-time sweep',
-        hint: 'Run the sweep to plot RMSE against time: photon mapping with N = 4096·n photons at the current radius, path tracing with 4·n paths per pixel, n = 1 … 64.',
+        hint: 'Run the sweep to plot RMSE against time: photon mapping with N = 4096·n photons at the current radius, progressive photon mapping with the radius shrinking as N^(−1/7) from the current N and r, and path tracing with 4·n paths per pixel, n = 1 … 64.',
         color: COLOURS.pm,
         points: SWEEP_POINTS,
       },
@@ -155,7 +167,7 @@ export class PhotonMapElement extends WidgetElement {
 
   protected buildReadout(readout: HTMLElement): void {
     this.readouts = new ReadoutList(readout, READOUT_ROWS);
-    this.readouts.set('slope', 'run the sweep');
+    for (const key of SWEEP_ROWS) this.readouts.set(key, 'run the sweep');
   }
 
   private set(key: string, text: string, state?: 'ok' | 'bad'): void {
@@ -340,18 +352,27 @@ export class PhotonMapElement extends WidgetElement {
     return this.sweep!.runSeries(async () => {
       const inputs = inputsFrom(this.values);
       const backend = await this.backends.choose();
-      this.set('slope', 'sweeping…');
+      for (const key of SWEEP_ROWS) this.set(key, 'sweeping…');
+      const radiusAt = (photons: number): number =>
+        progressiveRadius(inputs.radius, inputs.photons, photons);
       return {
         series: [
           { label: `photon mapping, r = ${formatNumber(inputs.radius, 3)} m`, color: COLOURS.pm },
+          {
+            label: `progressive, r = ${formatNumber(inputs.radius, 3)} m·(N/${inputs.photons})^(−1/7)`,
+            color: COLOURS.ppm,
+            dash: [6, 4],
+          },
           { label: 'path tracing', color: COLOURS.pt },
         ],
         measure: async (series: number, n: number) => {
-          if (series === 0) {
+          if (series < 2) {
             // The sweep runs the photon counts it names on the CPU fallback too.
+            const photons = SWEEP_PHOTONS * n;
+            const radius = series === 0 ? inputs.radius : radiusAt(photons);
             const r = await this.renderBoth(
               backend,
-              { ...inputs, photons: 4096 * n },
+              { ...inputs, photons, radius },
               PT_PASS_SPP,
               Infinity,
             );
@@ -359,26 +380,27 @@ export class PhotonMapElement extends WidgetElement {
           }
           const r = await this.renderBoth(
             backend,
-            { ...inputs, photons: 4096 },
+            { ...inputs, photons: SWEEP_PHOTONS },
             backend.kind === 'gpu' ? PT_PASS_SPP * n : n,
           );
           return { rmse: rmse(r.pathTraced, r.reference), milliseconds: r.ptMs };
         },
         finish: (points: readonly (readonly SweepPoint[])[]) => {
-          const slopes = points.map((p) =>
-            logLogSlope(
-              p.map((q) => q.milliseconds),
-              p.map((q) => q.rmse),
-            ),
+          const summary = summariseSweep(
+            points[0] ?? [],
+            points[1] ?? [],
+            points[2] ?? [],
+            SWEEP_PHOTONS,
+            radiusAt,
           );
-          const text = (s: number | null): string => (s === null ? 'no fit' : formatNumber(s, 2));
-          this.set(
-            'slope',
-            `photon mapping p = ${text(slopes[0]!)}, path tracing p = ${text(slopes[1]!)}`,
-          );
-          return `photon mapping and path tracing, ${backend.kind === 'gpu' ? 'GPU' : 'CPU fallback'}`;
+          this.set('plateau', summary.plateau);
+          this.set('progressive', summary.progressive);
+          this.set('pt-rate', summary.pathTracing);
+          return `photon mapping (fixed and progressive radius) and path tracing, ${backend.kind === 'gpu' ? 'GPU' : 'CPU fallback'}`;
         },
-        failed: () => this.set('slope', 'failed', 'bad'),
+        failed: () => {
+          for (const key of SWEEP_ROWS) this.set(key, 'failed', 'bad');
+        },
       };
     });
   }

@@ -325,6 +325,21 @@ function seesSun(direction: Vec3, sinMax: number): boolean {
   return -dot(direction, SCENE.sunDirection) >= Math.sqrt(Math.max(0, 1 - sinMax * sinMax));
 }
 
+/**
+ * Exponent of the progressive radius schedule. Chapter 10, "Bias versus variance":
+ * the bias of the volume radiance estimate grows like r² and its variance like
+ * 1/(N r³); minimising r⁴ + c/(N r³) gives r ∝ N^(−1/7), and then the RMSE falls as
+ * N^(−2/7) (Hachisuka et al. 2008; Knaus & Zwicker 2011).
+ */
+export const PROGRESSIVE_RADIUS_EXPONENT = -1 / 7;
+/** The RMSE rate that schedule gives, N^(−2/7). */
+export const PROGRESSIVE_RMSE_EXPONENT = -2 / 7;
+
+/** Progressive gather radius r_k = r₀ (N_k/N₀)^(−1/7): equal to r₀ at N₀, shrinking as N grows. */
+export function progressiveRadius(radius0: number, photons0: number, photons: number): number {
+  return radius0 * (photons / photons0) ** PROGRESSIVE_RADIUS_EXPONENT;
+}
+
 /** Step of the photon-map march: half the gather radius, at most 5 cm. */
 export function stepSizeFor(radius: number): number {
   return Math.min(0.05, 0.5 * radius);
