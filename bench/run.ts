@@ -46,7 +46,7 @@ if (wanted('subsurface'))
 if (wanted('translucent'))
   tables.push(
     ...(await benchTranslucent(device, {
-      size: quick ? 32 : 96,
+      size: quick ? 32 : 64,
       spp: quick ? 64 : 1024,
       sppPerBatch: quick ? 16 : 32,
       repeats: quick ? 3 : 9,

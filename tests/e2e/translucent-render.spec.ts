@@ -1,8 +1,9 @@
 // <sb-translucent-render> in Chromium with WebGPU (SwiftShader), at cheap settings (32² pixels,
 // 256 irradiance samples, a path-tracing target of 4 samples per pixel): the three pictures
 // draw, every readout is filled in (time and error of each method once the reference has
-// samples), a smaller ε visits more octree nodes, and the keyboard moves the selected pixel
-// of the octree-cut view.
+// samples, with the young reference's noise subtracted and named), a smaller ε visits more
+// octree nodes, the keyboard moves the selected pixel of the octree-cut view, and at 1280 px
+// the controls sit right of the pictures with the readouts under them.
 import { expect, test } from '@playwright/test';
 import { canvasStats, readout, trackErrors, widgetOpener } from './support.ts';
 
@@ -27,8 +28,15 @@ test('renders three pictures with time and error, and ε changes the nodes visit
   expect(await readout(widget, 'gather-time')).toMatch(/ms|µs/);
   await expect.poll(() => readout(widget, 'path-spp'), { timeout: 30_000 }).toMatch(/^4 of 4/);
   expect((await canvasStats(canvases.nth(2))).luminanceDeviation).toBeGreaterThan(5);
-  expect(await readout(widget, 'gather-error')).toMatch(/%.*%/);
-  expect(await readout(widget, 'diffuse-error')).toMatch(/%.*%/);
+  // At 4 spp the reference's noise is larger than a quarter of the errors: each is marked ≈
+  // (or below the noise) and names the noise that was subtracted.
+  for (const key of ['gather-error', 'diffuse-error']) {
+    expect(await readout(widget, key)).toMatch(/%.*%/);
+    expect(await readout(widget, key)).toMatch(
+      /^(≈ .*\(ref\. noise ±[0-9.]+%\)|below the reference noise)/,
+    );
+  }
+  await expect(widget.locator('dt', { hasText: 'noise-corrected' })).toHaveCount(2);
   expect(await readout(widget, 'path-se')).toContain('% of the mean');
   const coarse = await meanVisited(widget);
   expect(coarse).toBeGreaterThan(0);
@@ -48,6 +56,13 @@ test('renders three pictures with time and error, and ε changes the nodes visit
 test('the keyboard moves the selected pixel and shows its octree cut', async ({ page }) => {
   const errors = trackErrors(page);
   const widget = await openWidget(page, CHEAP);
+  // Layout at the 1280 × 900 viewport: pictures left, controls right, readouts under the pictures.
+  const picture = (await widget.locator('canvas.sb-canvas').first().boundingBox())!;
+  const controls = (await widget.locator('.sb-controls').boundingBox())!;
+  const readouts = (await widget.locator('.sb-readout').boundingBox())!;
+  expect(controls.x).toBeGreaterThan(picture.x + picture.width);
+  expect(readouts.y).toBeGreaterThan(picture.y + picture.height);
+  expect(readouts.x + readouts.width).toBeLessThan(controls.x);
   const holder = widget.locator('.sb-tr-holder');
   await expect(widget.locator('.sb-tr-overlay .sb-tr-pixel')).toHaveCount(1);
   const before = await readout(widget, 'pixel');

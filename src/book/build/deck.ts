@@ -277,9 +277,9 @@ export const DECK: readonly DeckSlide[] = [
   {
     title: 'A translucent sphere: Lambert, dipole BSSRDF, path tracing',
     widget: 'translucent-render',
-    attributes: { material: 'skin1', radius: '5' },
+    attributes: { material: 'skin1', radius: '5', size: '64' },
     caption:
-      'The same skin sphere as a Lambertian surface, with the dipole BSSRDF (Jensen–Buhler octree gather) and path traced. Light bleeds past the terminator only with the BSSRDF and the path tracer; drag ε and watch the nodes visited and the error against the reference.',
+      'The same skin sphere as a Lambertian surface, with the dipole BSSRDF (Jensen–Buhler octree gather) and path traced. Light bleeds past the terminator only with the BSSRDF and the path tracer; drag ε and watch the nodes visited and the error against the reference (64² pixels, as in the chapter’s table; the errors subtract the young reference’s noise).',
     chapter: '11-subsurface-scattering',
   },
 ];

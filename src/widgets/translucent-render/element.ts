@@ -4,7 +4,8 @@
 // sphere, an octree built in TypeScript, the gather on the GPU with the threshold ε); right,
 // volumetric path tracing of the same sphere as the reference, accumulated progressively
 // within a time budget per step, cancellable, with its per-pixel standard error. Each picture
-// shows its GPU time and its error against the reference; an ε sweep plots the gather's error
+// shows its GPU time and its error against the reference, with the reference's noise variance
+// subtracted so that a young reference does not inflate it; an ε sweep plots the gather's error
 // against its time; the middle picture can show the irradiance samples or the octree cut of a
 // selected pixel (click it, or focus the picture and use the arrow keys). Without WebGPU the
 // float64 twins draw the first two at reduced size and the reference is not run.
@@ -28,14 +29,21 @@ import {
   renderDiffuseCpu,
   renderGatherCpu,
   visiblePoint,
-  type ImageError,
   type Octree,
   type OctreeNode,
   type TranslucentScene,
 } from '../../subsurface/translucent.ts';
 import { PathAccumulator, TranslucentKernels } from '../../subsurface/translucentKernels.ts';
 import { TRANSLUCENT_RENDER } from './schema.ts';
-import { epsilonOf, paintImage, referenceKey, sampleCountOf, sceneFromValues } from './model.ts';
+import {
+  epsilonOf,
+  errorAgainstNoisyReference,
+  paintImage,
+  referenceKey,
+  sampleCountOf,
+  sceneFromValues,
+  type NoisyReferenceError,
+} from './model.ts';
 
 /** A progressive step of the path tracer aims at this much GPU time. */
 const STEP_BUDGET_MS = 120;
@@ -44,9 +52,9 @@ const CPU_SIZE = 40;
 
 const READOUT_ROWS = [
   ['diffuse-time', 'Lambert: time'],
-  ['diffuse-error', 'Lambert: relative RMSE · mean error'],
+  ['diffuse-error', 'Lambert: relative RMSE (noise-corrected) · mean error'],
   ['gather-time', 'BSSRDF gather: time'],
-  ['gather-error', 'BSSRDF: relative RMSE · mean error'],
+  ['gather-error', 'BSSRDF: relative RMSE (noise-corrected) · mean error'],
   ['gather-exact', 'BSSRDF gather vs direct sum (ε = 0)'],
   ['nodes-visited', 'Nodes visited per pixel (mean)'],
   ['octree', 'Irradiance samples · octree nodes'],
@@ -64,10 +72,20 @@ function preset(name: string, extra: Record<string, number> = {}): Preset {
 
 const percent = (x: number): string =>
   Number.isFinite(x) ? `${x >= 0 ? '+' : '−'}${formatNumber(Math.abs(100 * x), 3)}%` : '—';
-const errorText = (e: ImageError | null): string =>
-  e
-    ? `${formatNumber(100 * e.relativeRmse, 3)}% · ${percent(e.meanError)}`
-    : '— (no reference yet)';
+/**
+ * An error against the path-traced reference, its noise variance subtracted (model.ts,
+ * errorAgainstNoisyReference). While the subtracted noise is not small next to the error
+ * (over ¼ of it) the estimate is itself noisy, so it is marked ≈ and the noise that was
+ * subtracted is named; the label says "noise-corrected".
+ */
+const errorText = (e: NoisyReferenceError | null): string => {
+  if (!e) return '— (no reference yet)';
+  const noise = `±${formatNumber(100 * e.referenceNoise, 2)}%`;
+  if (e.belowNoise) return `below the reference noise (${noise}) · ${percent(e.meanError)}`;
+  const young = e.referenceNoise > e.relativeRmse / 4;
+  const value = `${formatNumber(100 * e.relativeRmse, 3)}% · ${percent(e.meanError)}`;
+  return young ? `≈ ${value} (ref. noise ${noise})` : value;
+};
 
 interface OctreeState {
   key: string;
@@ -105,6 +123,8 @@ export class TranslucentRenderElement extends WidgetElement {
   private reference: ReferenceState | null = null;
   private referenceToken = 0;
   private running = false;
+  /** Whether the last render ran on the CPU twins, where no reference is ever traced. */
+  private cpuOnly = false;
   private lastGather: {
     image: Float32Array;
     visited: Float32Array;
@@ -130,8 +150,8 @@ export class TranslucentRenderElement extends WidgetElement {
       canvas.className = 'sb-canvas';
       canvas.setAttribute('role', 'img');
       canvas.setAttribute('aria-label', label);
-      canvas.width = 96;
-      canvas.height = 96;
+      canvas.width = 64;
+      canvas.height = 64;
       return canvas;
     };
     this.canvases = [
@@ -140,7 +160,7 @@ export class TranslucentRenderElement extends WidgetElement {
       make('The sphere by volumetric path tracing (reference)'),
     ];
     const diffuse = imagePanel(this.canvases[0]!, 'Lambert, albedo = dipole Rd');
-    const bssrdf = imagePanel(this.canvases[1]!, 'Dipole BSSRDF (Jensen–Buhler)');
+    const bssrdf = imagePanel(this.canvases[1]!, 'Dipole BSSRDF, octree gather');
     const path = imagePanel(this.canvases[2]!, 'Path tracing (reference)');
     // The BSSRDF picture holds an SVG overlay (samples or cut) and takes clicks and arrow keys.
     const holder = document.createElement('div');
@@ -158,7 +178,7 @@ export class TranslucentRenderElement extends WidgetElement {
     holder.append(this.canvases[1]!, this.overlay);
     holder.addEventListener('click', (event) => {
       const rect = holder.getBoundingClientRect();
-      const size = this.scene?.size ?? 96;
+      const size = this.scene?.size ?? 64;
       const i = Math.floor(((event.clientX - rect.left) / rect.width) * size);
       const j = Math.floor(((event.clientY - rect.top) / rect.height) * size);
       this.selectPixel(i, j);
@@ -173,7 +193,7 @@ export class TranslucentRenderElement extends WidgetElement {
       const move = step[event.key];
       if (!move) return;
       event.preventDefault();
-      const size = this.scene?.size ?? 96;
+      const size = this.scene?.size ?? 64;
       const [i, j] = this.selected ?? [Math.floor(size / 2), Math.floor(size / 2)];
       const stride = event.shiftKey ? 8 : 1;
       this.selectPixel(i + stride * move[0], j + stride * move[1]);
@@ -239,6 +259,7 @@ export class TranslucentRenderElement extends WidgetElement {
     const backend = await this.backends.choose();
     const values = this.values;
     const scene = sceneFromValues(values);
+    this.cpuOnly = backend.kind === 'cpu';
     if (backend.kind === 'cpu') scene.size = Math.min(scene.size, CPU_SIZE);
     this.scene = scene;
     const state = this.octreeFor(scene, sampleCountOf(values));
@@ -357,19 +378,26 @@ export class TranslucentRenderElement extends WidgetElement {
         blank.fillStyle = '#000';
         blank.fillRect(0, 0, scene.size, scene.size);
       }
-      this.set('diffuse-error', errorText(null));
-      this.set('gather-error', errorText(null));
+      const missing = this.cpuOnly ? '— (the reference needs WebGPU)' : errorText(null);
+      this.set('diffuse-error', missing);
+      this.set('gather-error', missing);
       if (!reference) return;
     }
     const acc = reference.accumulator;
     if (acc.samples === 0) return;
     const mean = acc.mean();
+    const se = acc.standardError();
     paintImage(this.canvases[2]!, mean, scene.size, exposure);
     if (this.lastDiffuse)
-      this.set('diffuse-error', errorText(imageError(this.lastDiffuse, mean, mask)));
+      this.set(
+        'diffuse-error',
+        errorText(errorAgainstNoisyReference(this.lastDiffuse, mean, se, mask)),
+      );
     if (this.lastGather)
-      this.set('gather-error', errorText(imageError(this.lastGather.image, mean, mask)));
-    const se = acc.standardError();
+      this.set(
+        'gather-error',
+        errorText(errorAgainstNoisyReference(this.lastGather.image, mean, se, mask)),
+      );
     let squares = 0;
     let sum = 0;
     let n = 0;
@@ -459,7 +487,7 @@ export class TranslucentRenderElement extends WidgetElement {
   }
 
   private selectPixel(i: number, j: number): void {
-    const size = this.scene?.size ?? 96;
+    const size = this.scene?.size ?? 64;
     this.selected = [Math.min(Math.max(i, 0), size - 1), Math.min(Math.max(j, 0), size - 1)];
     this.drawOverlay();
   }
@@ -529,7 +557,7 @@ export class TranslucentRenderElement extends WidgetElement {
     circle(i + 0.5, j + 0.5, Math.max(1.2, size / 60), 'sb-tr-pixel');
     this.set(
       'pixel',
-      `(${i}, ${j}): ${result.visited} nodes visited · ${cut.length} nodes used whole + ${leafTerms} single samples`,
+      `(${i}, ${j}): ${result.visited} nodes visited · ${cut.length} whole + ${leafTerms} single samples`,
     );
     this.dataset['pixelVisited'] = String(result.visited);
     this.showPixelValues(j * size + i);
@@ -602,14 +630,18 @@ export class TranslucentRenderElement extends WidgetElement {
         ],
         measure: async (series: number, inverse: number): Promise<Omit<SweepPoint, 'n'>> => {
           const r = await run(inverse);
+          if (series === 0)
+            return {
+              rmse: imageError(r.image, exact, mask).relativeRmse,
+              milliseconds: r.milliseconds,
+            };
+          // Against the reference, as in the readouts: its noise variance subtracted.
           const acc = this.reference?.accumulator;
-          const against =
-            series === 0
-              ? exact
-              : acc && acc.samples > 0 && acc.pixels === scene.size ** 2
-                ? acc.mean()
-                : null;
-          const error = against ? imageError(r.image, against, mask).relativeRmse : NaN;
+          const error =
+            acc && acc.samples > 0 && acc.pixels === scene.size ** 2
+              ? errorAgainstNoisyReference(r.image, acc.mean(), acc.standardError(), mask)
+                  .relativeRmse
+              : NaN;
           return { rmse: error, milliseconds: r.milliseconds };
         },
         finish: (points: readonly (readonly SweepPoint[])[]) => {

@@ -65,3 +65,72 @@ export function paintImage(
   }
   context.putImageData(data, 0, 0);
 }
+
+/** An image's error against a Monte Carlo reference, with the reference's own noise removed. */
+export interface NoisyReferenceError {
+  /** √(max(0, MSE estimate)) / mean reference, the MSE estimate with the noise subtracted. */
+  relativeRmse: number;
+  /** The plain relative RMSE against the noisy reference, √mean((a − r̂)²) / mean r̂. */
+  rawRelativeRmse: number;
+  /** The reference's RMS standard error relative to its mean: the noise that was subtracted. */
+  referenceNoise: number;
+  /** Σa / Σr̂ − 1, the error of the mean brightness (the noise averages out of it). */
+  meanError: number;
+  /** Whether the subtracted estimate went negative: the error is below what the noise can resolve. */
+  belowNoise: boolean;
+}
+
+/**
+ * Error of `image` against a path-traced reference of per-value mean r̂ and standard error
+ * SE = s/√n, over the pixels where `mask` is set. A noisy reference inflates the plain MSE:
+ * with r̂ = r + noise of variance Var r̂, E[(a − r̂)²] = (a − r)² + Var r̂, and the sample
+ * variance s² (with n − 1) is unbiased whatever the distribution of the walks, so E[SE²] = Var r̂.
+ * Hence mean((a − r̂)² − SE²) is an unbiased estimate of the MSE against the noise-free image,
+ * and we report its square root (clamped at 0; the root itself is then slightly biased low). We subtract instead of
+ * only flagging the error as provisional because a young reference (3 spp, ~90 % noise) would
+ * otherwise show about √(e² + noise²), the noise and not the method's error; the subtracted noise
+ * is shown with the number so a reader sees how much was removed. Values whose SE is not finite
+ * (fewer than two samples) count with SE = 0.
+ */
+export function errorAgainstNoisyReference(
+  image: ArrayLike<number>,
+  referenceMean: ArrayLike<number>,
+  referenceSe: ArrayLike<number>,
+  mask: Uint8Array,
+): NoisyReferenceError {
+  let squares = 0;
+  let noise = 0;
+  let sum = 0;
+  let sumReference = 0;
+  let count = 0;
+  mask.forEach((inside, p) => {
+    if (!inside) return;
+    for (let c = 0; c < 3; c++) {
+      const a = image[3 * p + c]!;
+      const r = referenceMean[3 * p + c]!;
+      const se = referenceSe[3 * p + c]!;
+      squares += (a - r) ** 2;
+      noise += Number.isFinite(se) ? se * se : 0;
+      sum += a;
+      sumReference += r;
+      count += 1;
+    }
+  });
+  if (count === 0 || !(sumReference > 0))
+    return {
+      relativeRmse: NaN,
+      rawRelativeRmse: NaN,
+      referenceNoise: NaN,
+      meanError: NaN,
+      belowNoise: false,
+    };
+  const meanReference = sumReference / count;
+  const mse = (squares - noise) / count;
+  return {
+    relativeRmse: Math.sqrt(Math.max(0, mse)) / meanReference,
+    rawRelativeRmse: Math.sqrt(squares / count) / meanReference,
+    referenceNoise: Math.sqrt(noise / count) / meanReference,
+    meanError: sum / sumReference - 1,
+    belowNoise: mse <= 0,
+  };
+}

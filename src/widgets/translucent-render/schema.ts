@@ -84,7 +84,7 @@ export const TRANSLUCENT_RENDER: WidgetEntry = {
       min: 16,
       max: 256,
       step: 16,
-      default: 96,
+      default: 64,
       description: 'Width and height of each of the three pictures in pixels.',
     },
     {
