@@ -192,7 +192,10 @@ export class ExerciseElement extends WidgetElement {
     const exercise = await loadExerciseForPage(this.exerciseId);
     this.exercise = exercise;
     const title = this.querySelector('.sb-widget-title');
-    // The statement above already names the exercise; without it, the title does.
+    // The statement comes first and names the exercise; the header below it then
+    // introduces the student's part. Without a statement, the title names the exercise.
+    const header = this.querySelector('.sb-widget-header');
+    if (this.statement && header) header.before(this.statement);
     if (title)
       title.textContent = this.statement
         ? 'Your solution and the public checks'
