@@ -15,7 +15,8 @@ import { pathTraceGpu } from '../src/widgets/photon-map/gpuBackend.ts';
 import { DEFAULT_INPUTS, GPU_SIZE, REFERENCE_SEED } from '../src/widgets/photon-map/model.ts';
 
 const PASS_SPP = 64;
-const spp = Number(process.argv[2] ?? 16384);
+// The committed reference (public/photon-map/reference.bin) has 131072 paths per pixel.
+const spp = Number(process.argv[2] ?? 131072);
 const { width, height } = GPU_SIZE;
 const library = loadShaderLibrary(fileURLToPath(new URL('../shaders', import.meta.url)));
 const code = await linkLibraryKernel(library, 'kernels/photon-map.wesl');

@@ -52,10 +52,10 @@ import { summariseSweep } from './summary.ts';
 const READOUT_ROWS = [
   ['stored', 'Photons stored in the fog'],
   ['pm-time', 'Photon mapping time (trace, sort, gather)'],
-  ['pm-error', 'Photon mapping RMSE vs reference'],
+  ['pm-error', 'Photon mapping RMSE vs reference (W/(m²·sr))'],
   ['pt-spp', 'Path tracing, paths per pixel in equal time'],
   ['pt-time', 'Path tracing time'],
-  ['pt-error', 'Path tracing RMSE vs reference'],
+  ['pt-error', 'Path tracing RMSE vs reference (W/(m²·sr))'],
   ['plateau', 'Sweep, fixed r: plateau'],
   ['progressive', 'Sweep, progressive r ∝ N^−1/7: RMSE ∝ N^p'],
   ['pt-rate', 'Sweep, path tracing: RMSE ∝ time^p'],
@@ -134,9 +134,10 @@ export class PhotonMapElement extends WidgetElement {
     this.pmCanvas.dataset['view'] = 'photon-map';
     this.ptCanvas = imageCanvas('Path-traced image in equal time', GPU_SIZE.width, GPU_SIZE.height);
     this.ptCanvas.dataset['view'] = 'path-trace';
+    // The images map radiance v to grey √(v/top), so the bar's midpoint is top/4.
     const greyScale = {
       gradient: 'linear-gradient(to right, #000, #fff)',
-      low: '0',
+      low: '0 (square-root scale)',
       top: { readout: 'radiance-scale' },
     };
     const pm = imagePanel(this.pmCanvas, 'Photon mapping (volume radiance estimate)', greyScale);

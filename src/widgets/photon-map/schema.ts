@@ -15,7 +15,7 @@ export const PHOTON_MAP: WidgetEntry = {
       name: 'photons',
       label: 'Photons emitted',
       symbol: 'N',
-      unit: 'photons',
+      unit: '',
       min: 1024,
       max: 262144,
       step: 1024,

@@ -388,12 +388,18 @@ export class TranslucentRenderElement extends WidgetElement {
     const mean = acc.mean();
     const se = acc.standardError();
     paintImage(this.canvases[2]!, mean, scene.size, exposure);
-    if (this.lastDiffuse)
+    if (acc.samples < 2) {
+      // One sample per pixel has no standard error, so its noise can be neither
+      // subtracted nor shown: an error against it would be mostly that noise.
+      const young = '— (waiting for a second reference sample per pixel)';
+      this.set('diffuse-error', young);
+      this.set('gather-error', young);
+    } else if (this.lastDiffuse)
       this.set(
         'diffuse-error',
         errorText(errorAgainstNoisyReference(this.lastDiffuse, mean, se, mask)),
       );
-    if (this.lastGather)
+    if (acc.samples >= 2 && this.lastGather)
       this.set(
         'gather-error',
         errorText(errorAgainstNoisyReference(this.lastGather.image, mean, se, mask)),
