@@ -33,8 +33,8 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     name: 'Negative inputs stay physical',
     points: 2,
     message:
-      'Your transmittance exceeds 1 for negative σt or d: a transmittance is a fraction of ' +
-      'the light and must stay in [0, 1]; clamp the optical thickness to τ ≥ 0.',
+      'Your transmittance must be exactly 1 for negative σt or d (treat τ < 0 as no medium): ' +
+      'clamp the optical thickness to τ ≥ 0 (neither exp(−τ) nor exp(−|τ|) is right for τ < 0).',
     ...TOLERANCE,
     cases: [
       { label: 'negative σt', args: [-2, 1] },

@@ -31,7 +31,8 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     points: 1,
     message:
       'For g = 1e-7 the inverse CDF divides two tiny numbers and leaves [−1, 1] in f32 ' +
-      '(the textbook form gives −1.19): use μ = 2ξ − 1 for very small |g| (§9 row 6).',
+      '(the textbook form gives −1.19): use μ = 2ξ − 1 for very small |g| (§9 row 6). ' +
+      'If you already do, check the orientation: μ must increase with ξ.',
     ...POINT_TOLERANCE,
     cases: [{ label: 'g = 1e-7, ξ = 0.25 (§9 row 6)', args: [1e-7, 0.25] }],
   },

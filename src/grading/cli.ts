@@ -6,7 +6,7 @@
 // grading happened (whatever the submission's score, including submissions that do
 // not compile or loop forever), 1 when the self-test fails, 2 for a grader failure
 // (unknown exercise, missing file, bad flags).
-import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, readFileSync, statSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
@@ -27,6 +27,11 @@ class UsageError extends Error {}
 
 function print(text: string): void {
   process.stdout.write(`${text}\n`);
+}
+
+/** The human summary goes to stderr so stdout carries only the report (`> r.json` stays valid). */
+function note(text: string): void {
+  process.stderr.write(`${text}\n`);
 }
 
 const SHADERS = resolve(dirname(fileURLToPath(import.meta.url)), '../../shaders');
@@ -77,12 +82,15 @@ async function main(argv: string[]): Promise<number> {
     throw new UsageError(`unknown exercise "${values.exercise}"`);
   if (!values.submission) throw new UsageError('--submission is required');
   if (!existsSync(values.submission)) throw new UsageError(`no such file: ${values.submission}`);
+  if (!statSync(values.submission).isFile())
+    throw new UsageError(`not a file: ${values.submission}`);
   const format = values.format as ReportFormat;
   if (!REPORT_FORMATS.includes(format))
     throw new UsageError(`--format must be one of ${REPORT_FORMATS.join(', ')}`);
   let seed: number | undefined;
   if (values.seed !== undefined) {
-    seed = Number(values.seed);
+    // Digits only: Number() would also accept '', '0x10', '1e3' and ' 7 '.
+    seed = /^\d+$/.test(values.seed) ? Number(values.seed) : Number.NaN;
     if (!Number.isInteger(seed) || seed < 0 || seed > 0xffffffff)
       throw new UsageError('--seed must be an integer in [0, 2^32)');
   }
@@ -94,11 +102,11 @@ async function main(argv: string[]): Promise<number> {
     ...(seed !== undefined ? { seed } : {}),
   });
   const context = { exerciseId: exercise.id, title: exercise.title };
-  print(summary(outcome, context));
+  note(summary(outcome, context));
   const report = renderReport(format, outcome, context);
   if (values.out) {
     writeFileSync(values.out, report);
-    print(`${format} report written to ${values.out}`);
+    note(`${format} report written to ${values.out}`);
   } else {
     process.stdout.write(report);
   }

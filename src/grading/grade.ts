@@ -54,6 +54,31 @@ export class GradeStop extends Error {
   }
 }
 
+/**
+ * A student loop ran past its budget in one check. Only that check fails (the
+ * device is fine: the instrumentation stopped the loop), so gradeProgram catches
+ * it per check and words the message by the check's visibility.
+ */
+class LoopBudgetStop extends GradeStop {
+  constructor(
+    readonly budget: number,
+    readonly what: string,
+    readonly argsText: string,
+  ) {
+    super({ status: 'loop-budget', message: loopBudgetMessage(budget, what, argsText) });
+  }
+}
+
+/** `argsText` is left out for hidden checks so their cases stay secret before publication. */
+function loopBudgetMessage(budget: number, what: string, argsText?: string): string {
+  return (
+    `While ${what}, your loop ran past its budget of ${budget} iterations in one call` +
+    (argsText ? ` (arguments ${argsText})` : '') +
+    ', so the grader stopped it. ' +
+    'Check that every loop ends: its condition must become false, or a `break` must be reached.'
+  );
+}
+
 /** A program ready to run: the pipeline and where its source came from. */
 interface Program {
   pipeline: GPUComputePipeline;
@@ -482,13 +507,7 @@ async function run(
     }
     if (budgetHit >= 0 && program.role === 'student') {
       const budget = exercise.loopBudget ?? DEFAULT_LOOP_BUDGET;
-      throw new GradeStop({
-        status: 'loop-budget',
-        message:
-          `While ${what}, your loops ran more than ${budget} iterations in one call ` +
-          `(arguments ${formatArgs(exercise, calls[budgetHit] ?? [])}), so the grader stopped them. ` +
-          'Check that every loop ends: its condition must become false, or a `break` must be reached.',
-      });
+      throw new LoopBudgetStop(budget, what, formatArgs(exercise, calls[budgetHit] ?? []));
     }
     return results;
   } finally {
@@ -773,10 +792,52 @@ async function gradeProgram(
     const student = await prepare(timeoutMs);
     const ctx: CheckContext = { device, library, exercise, student, timeoutMs, seed };
     const results: CheckResult[] = [];
+    let overruns = 0;
+    let budget = exercise.loopBudget ?? DEFAULT_LOOP_BUDGET;
     for (const [index, { check, visibility }] of checks.entries()) {
       options.signal?.throwIfAborted();
-      results.push(await runCheck(ctx, check, visibility, index));
+      try {
+        results.push(await runCheck(ctx, check, visibility, index));
+      } catch (error) {
+        if (error instanceof GradeStop && !(error instanceof LoopBudgetStop)) {
+          // A timeout or device loss still ends grading (the device may be busy or gone),
+          // but the top-level message must not name a hidden check before publication.
+          if (visibility === 'public') throw error;
+          const hiddenName = `the check "${check.name}"`;
+          throw new GradeStop({
+            ...error.outcome,
+            message: error.outcome.message.split(hiddenName).join('a hidden check'),
+          });
+        }
+        if (!(error instanceof LoopBudgetStop)) throw error;
+        // Only this check fails; the others are still scored. A hidden check's
+        // arguments are left out of its message.
+        overruns++;
+        budget = error.budget;
+        results.push({
+          name: check.name,
+          visibility,
+          verdict: 'fail',
+          points: 0,
+          maxPoints: check.points,
+          message: loopBudgetMessage(
+            error.budget,
+            error.what,
+            visibility === 'public' ? error.argsText : undefined,
+          ),
+        });
+      }
       options.onProgress?.(index + 1, checks.length);
+    }
+    if (overruns > 0 && overruns === checks.length) {
+      // Every check overran: nothing was graded, which is the endless-loop outcome.
+      return {
+        status: 'loop-budget',
+        message:
+          `Your loop ran past its budget of ${budget} iterations in every check, so the ` +
+          'grader stopped it. Check that every loop ends: its condition must become false, ' +
+          'or a `break` must be reached.',
+      };
     }
     return {
       status: 'graded',

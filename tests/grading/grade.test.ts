@@ -7,7 +7,7 @@ import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { EXERCISE_IDS, loadExercise } from '../../exercises/index.ts';
 import { GradeStop, gradeSubmission, withDeviceGuards } from '../../src/grading/grade.ts';
-import { EXERCISES_DIR } from '../../src/grading/node.ts';
+import { EXERCISES_DIR, loadFullExercise } from '../../src/grading/node.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 
@@ -82,6 +82,35 @@ describe('gradeSubmission', () => {
     );
     expect(nan.status).toBe('graded');
     if (nan.status === 'graded') expect(nan.checks[0]?.message).toContain('NaN');
+  });
+
+  it('fails only the check whose loop overran, without leaking hidden arguments', async () => {
+    const device = await nodeDevice();
+    // Loops forever only when the majorant is 0 (the hidden "Majorant of zero" check).
+    const source = [
+      'fn deltaTracking(sigma0: f32, amplitude: f32, d: f32, sigmaMaj: f32, state: ptr<function, u32>) -> f32 {',
+      '  var t = 0.0;',
+      '  loop {',
+      '    if (sigmaMaj <= 0.0) { continue; }',
+      '    t += -log(1.0 - rngNextFloat(state)) / sigmaMaj;',
+      '    if (t >= d) { return 1.0; }',
+      '    if (rngNextFloat(state) * sigmaMaj < extinction(sigma0, amplitude, t)) { return 0.0; }',
+      '  }',
+      '}',
+    ].join('\n');
+    const exercise = await loadFullExercise('delta-tracking');
+    const outcome = await gradeSubmission(device, SHADER_LIBRARY, exercise, source, {
+      which: 'all',
+    });
+    expect(outcome.status).toBe('graded');
+    if (outcome.status !== 'graded') return;
+    const failed = outcome.checks.filter((c) => c.verdict === 'fail');
+    expect(failed).toHaveLength(1);
+    expect(failed[0]?.visibility).toBe('hidden');
+    expect(failed[0]?.points).toBe(0);
+    expect(failed[0]?.message).toContain('ran past its budget of 4096 iterations');
+    expect(failed[0]?.message).not.toContain('arguments');
+    expect(outcome.score).toBe(outcome.maxScore - (failed[0]?.maxPoints ?? 0));
   });
 
   it('names the expected signature when the function is missing', async () => {
