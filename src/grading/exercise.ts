@@ -4,7 +4,7 @@
 // exercise lives in exercises/<id>/: exercise.ts exports the public definition
 // (safe for the page's bundle), hidden.ts exports the hidden checks (imported only
 // by the command line and the tests).
-import type { ExerciseInfo } from './types.ts';
+import type { ExerciseInfo, GradeOutcome } from './types.ts';
 
 /** Parameter types the grader can feed: scalars, or the rng state pointer it seeds itself. */
 export type ParamType = 'f32' | 'u32' | 'i32' | 'ptr<function, u32>';
@@ -112,7 +112,7 @@ export interface ExerciseDefinition extends ExerciseInfo {
 export interface WrongExpectation {
   file: string;
   /** Expected outcome status, default 'graded'. */
-  status?: 'graded' | 'compile-error' | 'wrong-signature' | 'loop-budget';
+  status?: GradeOutcome['status'];
   /** Expected score range [min, max] (inclusive) when graded. */
   score?: [number, number];
   reason: string;

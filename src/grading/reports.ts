@@ -39,10 +39,14 @@ export function outcomeHeadline(outcome: GradeOutcome): string {
       return `Wrong signature — ${outcome.message}`;
     case 'loop-budget':
       return `Loop budget exceeded — ${outcome.message}`;
+    case 'rejected':
+      return `Submission refused — ${outcome.message}`;
     case 'timeout':
-      return `GPU timeout — ${outcome.message}`;
+      return `Timed out — ${outcome.message}`;
     case 'device-lost':
       return `GPU device lost — ${outcome.message}`;
+    case 'internal-error':
+      return `Grader error — ${outcome.message}`;
   }
 }
 

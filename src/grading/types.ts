@@ -80,8 +80,30 @@ export type GradeOutcome =
   | { status: 'wrong-signature'; message: string }
   /** A loop ran past its iteration budget (loops are bounded by source instrumentation). */
   | { status: 'loop-budget'; message: string }
-  /** The GPU did not finish within the watchdog's time, or the device was lost. */
-  | { status: 'timeout' | 'device-lost'; message: string };
+  /**
+   * Refused before compilation: too large, or declarations the harness does not allow
+   * (bindings, entry points, `enable`/`requires`, `override`, reserved names). The
+   * message says which and where. The student's to fix, like a compile error.
+   */
+  | { status: 'rejected'; message: string }
+  /**
+   * Grader-side failures, not the student's: 'timeout' (a GPU watchdog or the whole
+   * run's wall-clock limit), 'device-lost', 'internal-error' (an exception in the
+   * grader). Reports present them as "grading failed", never as a score of 0.
+   */
+  | { status: 'timeout' | 'device-lost' | 'internal-error'; message: string };
+
+/** The statuses that are failures of the grader (or its machine), not of the submission. */
+export const GRADER_SIDE_STATUSES: readonly GradeOutcome['status'][] = [
+  'timeout',
+  'device-lost',
+  'internal-error',
+];
+
+/** Whether `outcome` is a failure on the grader's side (to be regraded, not scored). */
+export function isGraderSideFailure(outcome: GradeOutcome): boolean {
+  return GRADER_SIDE_STATUSES.includes(outcome.status);
+}
 
 export interface GradeOptions {
   /** Which checks to run: the page runs 'public'; the instructor 'all'. */

@@ -57,8 +57,10 @@ const STATUS_WORDS: Record<StoredResult['status'], string> = {
   'compile-error': 'does not compile',
   'wrong-signature': 'wrong signature',
   'loop-budget': 'a loop ran past its budget',
+  rejected: 'refused before compiling',
   timeout: 'timed out',
   'device-lost': 'GPU device lost',
+  'internal-error': 'grader error',
 };
 
 function describeStored(result: StoredResult): string {

@@ -65,8 +65,10 @@ const STATUSES: readonly string[] = [
   'compile-error',
   'wrong-signature',
   'loop-budget',
+  'rejected',
   'timeout',
   'device-lost',
+  'internal-error',
 ];
 
 function isRecord(value: unknown): value is Record<string, unknown> {
