@@ -101,7 +101,9 @@ export const GRADER_SIDE_STATUSES: readonly GradeOutcome['status'][] = [
 ];
 
 /** Whether `outcome` is a failure on the grader's side (to be regraded, not scored). */
-export function isGraderSideFailure(outcome: GradeOutcome): boolean {
+export function isGraderSideFailure(
+  outcome: GradeOutcome,
+): outcome is Extract<GradeOutcome, { status: 'timeout' | 'device-lost' | 'internal-error' }> {
   return GRADER_SIDE_STATUSES.includes(outcome.status);
 }
 

@@ -92,7 +92,7 @@ const graded: GradeOutcome = {
     },
   ],
 };
-const compileError: GradeOutcome = {
+const compileError: Exclude<GradeOutcome, { status: 'graded' }> = {
   status: 'compile-error',
   message: "Your shader does not compile: line 5, column 3: expected ';'",
   diagnostics: [{ line: 5, column: 3, message: "expected ';'", severity: 'error' }],
@@ -182,5 +182,104 @@ describe('JUnit XML', () => {
     };
     expect(parsed.exercise).toBe('beer-law');
     expect(parsed.score).toBe(6);
+  });
+});
+
+describe('what students see before publication, and grader-side failures', () => {
+  const failures: Exclude<GradeOutcome, { status: 'graded' }>[] = [
+    { status: 'timeout', message: 'The whole run passed its wall-clock limit of 120 s.' },
+    { status: 'device-lost', message: 'The GPU device was lost (simulated).' },
+    { status: 'internal-error', message: 'TypeError: x is undefined' },
+  ];
+
+  it('Gradescope: the top-level output names only the public points', () => {
+    const report = gradescopeReport(graded, { ...context, executionTimeS: 3.4 }) as Record<
+      string,
+      unknown
+    >;
+    expect(report.output).toContain('public checks 6 / 6 points');
+    // The total (6 / 10) includes the hidden check's points: not before publication.
+    expect(report.output).not.toMatch(/\/ 10\b/);
+    expect(report.output).not.toContain('Negative inputs');
+    expect(report.execution_time).toBe(3);
+    expect(report.stdout_visibility).toBe('hidden');
+    expect(report.score).toBe(6);
+  });
+
+  it('Gradescope: a grader-side failure is a visible "will be regraded" test, with no score', () => {
+    for (const outcome of failures) {
+      const report = gradescopeReport(outcome, context) as Record<string, unknown>;
+      keysWithin(report, GRADESCOPE_TOP);
+      // No top-level score: the spec lets the tests carry it, and the one test is worth 0 of 0.
+      expect(report).not.toHaveProperty('score');
+      const tests = report.tests as Record<string, unknown>[];
+      expect(tests).toHaveLength(1);
+      keysWithin(tests[0] as object, GRADESCOPE_TEST);
+      expect(tests[0]).toMatchObject({
+        name: 'Grading failed — will be regraded',
+        score: 0,
+        max_score: 0,
+        status: 'failed',
+        visibility: 'visible',
+      });
+      expect(tests[0]?.output).toContain(outcome.message);
+      expect(report.output).toContain('not your score');
+      expect(report.extra_data).toEqual({ grader_failure: outcome.status });
+    }
+  });
+
+  it("Gradescope: the student's own non-graded outcomes score 0 with a visible reason", () => {
+    const rejected = {
+      status: 'rejected' as const,
+      message: 'line 1, column 1: `@group(1)` declares a resource binding',
+    };
+    for (const outcome of [compileError, rejected]) {
+      const report = gradescopeReport(outcome, context) as Record<string, unknown>;
+      expect(report.score).toBe(0);
+      const tests = report.tests as Record<string, unknown>[];
+      expect(tests[0]?.visibility).toBe('visible');
+      expect(tests[0]?.output).toContain(outcome.message.slice(0, 20));
+    }
+  });
+
+  it('PrairieLearn: hidden checks show only their name and pass/fail', () => {
+    const checks = graded.status === 'graded' ? graded.checks : [];
+    const withSamples: GradeOutcome = {
+      ...graded,
+      checks: checks.map((c) =>
+        c.visibility === 'hidden'
+          ? {
+              ...c,
+              samples: [{ args: 'sigmaT = -2, d = 1', student: '7.389057', reference: '1' }],
+            }
+          : c,
+      ),
+    };
+    const report = prairieLearnReport(withSamples, context) as {
+      tests: Record<string, unknown>[];
+    };
+    const hidden = report.tests[1] as Record<string, unknown>;
+    expect(Object.keys(hidden).sort()).toEqual(['max_points', 'message', 'name', 'points']);
+    expect(hidden.message).toBe('failed');
+    const text = JSON.stringify(report);
+    expect(text).not.toContain('sigmaT = -2');
+    expect(text).not.toContain('7.389057');
+    expect(text).not.toContain('exceeds 1 for negative');
+    // The public check keeps its message and samples.
+    expect(report.tests[0]?.output).toContain('yours 0.3678794');
+  });
+
+  it('PrairieLearn: a grader-side failure is gradable: false with the reason', () => {
+    for (const outcome of failures) {
+      const report = prairieLearnReport(outcome, context) as Record<string, unknown>;
+      keysWithin(report, PRAIRIELEARN_TOP);
+      expect(report.gradable).toBe(false);
+      expect(report.message).toContain(outcome.message);
+      expect(report.message).toContain('regraded');
+    }
+    const loop = prairieLearnReport({ status: 'loop-budget', message: 'endless' }, context) as {
+      gradable: boolean;
+    };
+    expect(loop.gradable).toBe(true);
   });
 });
