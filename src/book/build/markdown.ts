@@ -9,6 +9,7 @@ import { tex } from '@mdit/plugin-tex';
 import { parseQuiz } from './quiz.ts';
 import { WIDGET_CATALOG } from '../../widgets/catalog.ts';
 import { embedExercises } from './exercises.ts';
+import { mathmlArityProblems, repairMathml } from './mathml.ts';
 
 export interface TocEntry {
   level: 2 | 3;
@@ -69,6 +70,16 @@ function renderMath(content: string, displayMode: boolean, env: RenderEnv): stri
     html = katex.renderToString(body, { displayMode, throwOnError: true, output: 'htmlAndMathml' });
   } catch (error) {
     throw new Error(`${env.file}: KaTeX cannot typeset "${content.trim()}": ${String(error)}`);
+  }
+  // KaTeX leaves an operator name in a script as two loose children (mathml.ts);
+  // anything still malformed is refused here rather than logged by Firefox.
+  html = repairMathml(html);
+  const problem = mathmlArityProblems(html)[0];
+  if (problem) {
+    throw new Error(
+      `${env.file}: KaTeX made invalid MathML for "${content.trim()}": <${problem.element}> ` +
+        `has ${problem.children} children, MathML requires ${problem.expected}`,
+    );
   }
   if (!displayMode) {
     if (labels.length) throw new Error(`${env.file}: \\label is only allowed in display math`);
