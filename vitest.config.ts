@@ -2,7 +2,7 @@ import { defineConfig } from 'vitest/config';
 
 export default defineConfig({
   test: {
-    include: ['tests/{reference,shaders,stability,book,grading}/**/*.test.ts'],
+    include: ['tests/{reference,shaders,stability,book,grading,naga}/**/*.test.ts'],
     pool: 'forks',
     setupFiles: ['tests/support/setupGpu.ts'],
     testTimeout: 30_000,

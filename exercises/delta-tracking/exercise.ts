@@ -101,15 +101,19 @@ fn deltaTracking(sigma0: f32, amplitude: f32, d: f32, sigmaMaj: f32, state: ptr<
     return 1.0;
   }
   var t = 0.0;
+  var estimate = 1.0;
+  // Breaks, then one return: naga (Firefox) rejects a function that ends in a loop.
   loop {
     t += sampleFreeFlight(sigmaMaj, rngNextFloat(state));
     if (t >= d) {
-      return 1.0;
+      break;
     }
     if (rngNextFloat(state) * sigmaMaj < extinction(sigma0, amplitude, t)) {
-      return 0.0;
+      estimate = 0.0;
+      break;
     }
   }
+  return estimate;
 }`,
   checks: [
     deltaTrackingCheck(

@@ -9,8 +9,9 @@ fn deltaTracking(sigma0: f32, amplitude: f32, d: f32, sigmaMaj: f32, state: ptr<
   loop {
     t += -log(1.0 - rngNextFloat(state)) / sigmaMaj;
     if (t >= d) {
-      return weight;
+      break;
     }
     weight *= 1.0 - extinction(sigma0, amplitude, t) / sigmaMaj;
   }
+  return weight;
 }
