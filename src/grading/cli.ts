@@ -21,6 +21,7 @@ import { runSelfTest } from './selfTest.ts';
 const USAGE = `usage:
   grade --exercise ID --submission FILE [--format gradescope|prairielearn|json|junit] [--out FILE] [--seed S]
   grade --self-test [--exercise ID]
+  grade kit gradescope --exercise ID --out DIR | grade kit prairielearn --out DIR  (grade kit --help)
 exercises: ${EXERCISE_IDS.join(', ')}`;
 
 class UsageError extends Error {}
@@ -37,6 +38,8 @@ function note(text: string): void {
 const SHADERS = resolve(dirname(fileURLToPath(import.meta.url)), '../../shaders');
 
 async function main(argv: string[]): Promise<number> {
+  // `grade kit …` writes a Gradescope or PrairieLearn kit (src/grading/kit/).
+  if (argv[0] === 'kit') return (await import('./kit/index.ts')).runKit(argv.slice(1));
   let values;
   try {
     ({ values } = parseArgs({
