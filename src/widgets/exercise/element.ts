@@ -4,8 +4,12 @@
 // checks of the one grading core, src/grading/grade.ts, on a GPU device of its own),
 // Cancel, Reset, Hints one at a time, export and import of all exercises' progress,
 // and the results with the student's values next to the reference's. Code, hints and
-// the last result persist in localStorage. Without WebGPU the editor and saving still
-// work and a notice says the checks need WebGPU.
+// the last result persist in localStorage. Above the editor, a note says how the
+// exercise is graded (public checks here, hidden ones by the course's grader) and which
+// browsers run the checks, and whether this one can; Download submission saves the code
+// as <exercise-id>.wgsl, the file the Gradescope and PrairieLearn kits grade
+// (src/grading/kit/). Without WebGPU the editor, saving and downloading still work and
+// a notice says the checks need WebGPU.
 import { WidgetElement } from '../base/widgetElement.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import type { ExerciseDefinition } from '../../grading/exercise.ts';
@@ -91,6 +95,7 @@ export class ExerciseElement extends WidgetElement {
   private progress: ExerciseProgress = { code: '', hintsShown: 0, result: null };
   private saveTimer: ReturnType<typeof setTimeout> | null = null;
   private gpuReason: string | null = null;
+  private gpuStatus: HTMLElement | null = null;
   private started = false;
 
   override connectedCallback(): void {
@@ -115,6 +120,8 @@ export class ExerciseElement extends WidgetElement {
     const id = this.widgetId;
     if (this.statement) stage.appendChild(this.statement);
 
+    stage.append(this.buildGradingNote());
+
     const label = document.createElement('p');
     label.className = 'sb-exercise-editor-label';
     label.id = `${id}-editor-label`;
@@ -136,6 +143,8 @@ export class ExerciseElement extends WidgetElement {
     this.cancelButton.hidden = true;
     const reset = button('Reset', 'reset');
     this.hintButton = button('Show a hint', 'hint');
+    const download = button('Download submission', 'download');
+    download.title = `Save your code as ${this.exerciseId}.wgsl, the file your course's grader takes`;
     const exportButton = button('Export progress', 'export');
     const importButton = button('Import progress', 'import');
     const fileInput = document.createElement('input');
@@ -153,6 +162,7 @@ export class ExerciseElement extends WidgetElement {
       this.progressBar,
       reset,
       this.hintButton,
+      download,
       exportButton,
       importButton,
       fileInput,
@@ -162,6 +172,7 @@ export class ExerciseElement extends WidgetElement {
     this.cancelButton.addEventListener('click', () => this.running?.abort());
     reset.addEventListener('click', () => this.reset());
     this.hintButton.addEventListener('click', () => this.revealHint());
+    download.addEventListener('click', () => this.downloadSubmission());
     exportButton.addEventListener('click', () => this.exportProgress());
     importButton.addEventListener('click', () => fileInput.click());
     fileInput.addEventListener('change', () => {
@@ -178,6 +189,44 @@ export class ExerciseElement extends WidgetElement {
     results.setAttribute('aria-live', 'polite');
     this.results = new ResultView(results, (line, column) => this.editor?.moveTo(line, column));
     stage.append(label, this.editorArea, hint, toolbar, this.hintList, results);
+  }
+
+  /**
+   * Says, before the student writes code, how the exercise is graded (public checks
+   * here, hidden checks by the course's grader, which takes the downloaded file) and
+   * which browsers can run the checks; checkGpu() then says whether this one can.
+   */
+  private buildGradingNote(): HTMLElement {
+    const note = document.createElement('div');
+    note.className = 'sb-exercise-grading';
+    const how = document.createElement('p');
+    const howTitle = document.createElement('strong');
+    howTitle.textContent = 'How it is graded. ';
+    const file = document.createElement('code');
+    file.textContent = `${this.exerciseId}.wgsl`;
+    how.append(
+      howTitle,
+      'Run checks runs the public checks here, on your own GPU. Your course grades your ' +
+        'submission on its grader (Gradescope or PrairieLearn) with the same public checks ' +
+        'and hidden ones: when you are done, press Download submission and hand in the file ',
+      file,
+      '.',
+    );
+    const browsers = document.createElement('p');
+    const browsersTitle = document.createElement('strong');
+    browsersTitle.textContent = 'Browsers. ';
+    this.gpuStatus = document.createElement('span');
+    this.gpuStatus.className = 'sb-exercise-gpu-status';
+    this.gpuStatus.textContent = 'Checking this browser for WebGPU…';
+    browsers.append(
+      browsersTitle,
+      'The checks need WebGPU: Chrome or Edge (113 or later), Safari 26 or later, Firefox 141 ' +
+        'or later on Windows (elsewhere once WebGPU is enabled). Without WebGPU you can write, ' +
+        'save and download your code, but the checks cannot run. ',
+      this.gpuStatus,
+    );
+    note.append(how, browsers);
+    return note;
   }
 
   protected buildReadout(readout: HTMLElement): void {
@@ -238,10 +287,16 @@ export class ExerciseElement extends WidgetElement {
       if (!adapter) reason = 'WebGPU found no suitable GPU adapter';
     }
     this.gpuReason = reason;
+    if (this.gpuStatus) {
+      this.gpuStatus.textContent = reason
+        ? `This browser cannot run them: ${reason}.`
+        : 'This browser has WebGPU: the checks run here.';
+      this.gpuStatus.dataset['webgpu'] = reason ? 'no' : 'yes';
+    }
     if (reason) {
       this.showCpuFallbackNotice(
         reason,
-        'The editor works and your code is saved in this browser, but running the checks needs WebGPU.',
+        'The editor works, your code is saved in this browser and Download submission works, but running the checks needs WebGPU.',
       );
       if (this.runButton) this.runButton.disabled = true;
       this.setCost(
@@ -427,6 +482,24 @@ export class ExerciseElement extends WidgetElement {
     );
     const summary = outcomeSummary(outcome);
     this.dataset['summary'] = summary.ok ? 'pass' : 'fail';
+  }
+
+  /** The editor's code as `<exercise-id>.wgsl`: the file the Gradescope and PrairieLearn kits grade. */
+  private downloadSubmission(): void {
+    if (!this.exercise || !this.editor) return;
+    const name = `${this.exercise.id}.wgsl`;
+    const blob = new Blob([this.editor.getCode()], { type: 'text/plain;charset=utf-8' });
+    const link = document.createElement('a');
+    link.href = URL.createObjectURL(blob);
+    link.download = name;
+    link.click();
+    setTimeout(() => URL.revokeObjectURL(link.href), 10_000);
+    this.showNotice(
+      'download',
+      'info',
+      `Saved your code as ${name}: hand in this file to your course's grader.`,
+      8000,
+    );
   }
 
   private exportProgress(): void {
