@@ -2,7 +2,9 @@
 // exercise: the statement is typeset at build time, the editor starts from the
 // starter code, a correct solution passes the public checks (graded on the GPU by
 // the same core as the command line), a syntax error is shown at its line and
-// column and moves the cursor there, and the code survives a reload.
+// column and moves the cursor there, and the code survives a reload. Above the editor,
+// a note says how grading works and which browsers run the checks; Download submission
+// saves the editor's code as beer-law.wgsl, the file the grading kits take.
 import { readFileSync } from 'node:fs';
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
@@ -85,6 +87,39 @@ test('a correct solution passes the public checks, and the code survives a reloa
   expect(errors).toEqual([]);
 });
 
+test('the note says how grading works and which browsers run the checks; Download submission saves beer-law.wgsl', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openExercise(page);
+  const note = widget.locator('.sb-exercise-grading');
+  await expect(note).toContainText('Run checks runs the public checks here');
+  await expect(note).toContainText('same public checks and hidden ones');
+  await expect(note).toContainText('Download submission and hand in the file beer-law.wgsl');
+  for (const browser of ['Chrome or Edge', 'Safari 26', 'Firefox 141'])
+    await expect(note).toContainText(browser);
+  await expect(note).toContainText('Without WebGPU you can write, save and download your code');
+  await expect(widget.locator('.sb-exercise-gpu-status')).toHaveText(
+    'This browser has WebGPU: the checks run here.',
+  );
+  // Said before the student writes code: the note sits above the editor.
+  const noteBox = await note.boundingBox();
+  const editorBox = await widget.locator('.cm-editor').boundingBox();
+  expect(noteBox && editorBox && noteBox.y + noteBox.height <= editorBox.y).toBe(true);
+
+  await setCode(page, widget, SOLUTION);
+  const download = page.waitForEvent('download');
+  await widget.locator('[data-action="download"]').click();
+  const file = await download;
+  expect(file.suggestedFilename()).toBe('beer-law.wgsl');
+  expect(readFileSync(await file.path(), 'utf8')).toBe(SOLUTION);
+  await expect(widget.locator('.sb-notice--info')).toContainText(
+    'Saved your code as beer-law.wgsl',
+  );
+  expect(await axeViolations(page)).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
 test('a syntax error is shown at its line and column, and a click moves the cursor there', async ({
   page,
 }) => {
@@ -119,7 +154,15 @@ test('without WebGPU: a notice, and the editor, hints, saving, export, import an
   );
   await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
   await expect(widget.locator('[data-action="run"]')).toBeDisabled();
+  await expect(widget.locator('.sb-exercise-gpu-status')).toHaveText(
+    /^This browser cannot run them: this browser has no WebGPU/,
+  );
   await setCode(page, widget, SOLUTION);
+  // Downloading the submission needs no GPU.
+  const saved = page.waitForEvent('download');
+  await widget.locator('[data-action="download"]').click();
+  expect((await saved).suggestedFilename()).toBe('beer-law.wgsl');
+  expect(readFileSync(await (await saved).path(), 'utf8')).toBe(SOLUTION);
   await widget.locator('[data-action="hint"]').click();
   await expect(widget.locator('.sb-exercise-hints li')).toHaveCount(1);
   await page.reload();
