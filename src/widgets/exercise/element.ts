@@ -201,7 +201,7 @@ export class ExerciseElement extends WidgetElement {
     note.className = 'sb-exercise-grading';
     const how = document.createElement('p');
     const howTitle = document.createElement('strong');
-    howTitle.textContent = 'How it is graded. ';
+    howTitle.textContent = 'Where it is graded. ';
     const file = document.createElement('code');
     file.textContent = `${this.exerciseId}.wgsl`;
     how.append(
