@@ -19,15 +19,12 @@ import {
 } from './exercise.ts';
 import {
   blankComments,
-  blankImports,
   GUARD_COUNTER,
   GUARD_FLAG,
-  instrumentLoops,
-  mapPosition,
+  normalizeSource,
   paramTypeText,
-  parseFunctions,
-  RESERVED_PREFIX,
-  type Insertion,
+  positionMapper,
+  prepareSource,
 } from './instrument.ts';
 import {
   bernoulliMeanZ,
@@ -218,7 +215,7 @@ async function compile(
     'compiling your shader',
     module.getCompilationInfo(),
   );
-  await scope;
+  await withDeviceGuards(device, timeoutMs, 'compiling your shader', scope);
   const diagnostics: SourceDiagnostic[] = [];
   for (const message of info.messages) {
     if (message.type === 'info') continue;
@@ -236,13 +233,19 @@ async function compile(
 async function createPipeline(
   device: GPUDevice,
   module: GPUShaderModule,
+  timeoutMs = DEFAULT_TIMEOUT_MS,
 ): Promise<{ pipeline: GPUComputePipeline; error: string | null }> {
   device.pushErrorScope('validation');
   const pipeline = device.createComputePipeline({
     layout: 'auto',
     compute: { module, entryPoint: 'sbg_main' },
   });
-  const error = await device.popErrorScope();
+  const error = await withDeviceGuards(
+    device,
+    timeoutMs,
+    'creating the pipeline',
+    device.popErrorScope(),
+  );
   return { pipeline, error: error ? error.message : null };
 }
 
@@ -280,30 +283,20 @@ async function prepareStudent(
   timeoutMs: number,
 ): Promise<PreparedStudent> {
   const expected = signatureText(exercise.subject);
-  const code = blankComments(source);
-  if (code.includes(RESERVED_PREFIX)) {
-    throw new GradeStop({
-      status: 'wrong-signature',
-      message: `Names starting with "${RESERVED_PREFIX}" are reserved for the grader; please rename them.`,
-    });
-  }
+  // Size cap, normalisation (BOM, line breaks), refusals and loop bounds, in linear
+  // time and before anything reaches the compiler; the compiler sees the text the
+  // scans saw.
+  const prepared = prepareSource(source, exercise.loopBudget ?? DEFAULT_LOOP_BUDGET);
+  if (!prepared.ok) throw new GradeStop({ status: 'rejected', message: prepared.message });
+  const { instrumented, functions } = prepared;
   const helpers = exercise.helpers;
   const prelude = helpers
     ? await linkKernel(library, [...helpers.imports, helpers.wgsl].join('\n'))
     : '';
-  const instrumented = instrumentLoops(
-    blankImports(source),
-    exercise.loopBudget ?? DEFAULT_LOOP_BUDGET,
-  );
   const linesBefore = prelude ? countLines(prelude) : 0;
-  const studentLines = countLines(source);
   const head = prelude ? `${prelude}\n` : '';
-  const mapper =
-    (insertions: readonly Insertion[]) =>
-    (line: number, column: number): { line: number; column: number } | null => {
-      if (line <= linesBefore || line > linesBefore + studentLines) return null;
-      return mapPosition(line, column, linesBefore, insertions);
-    };
+  const mapper = (insertions: typeof instrumented.insertions) =>
+    positionMapper(linesBefore, prepared.lineCount, insertions);
   // 1. The submission alone (with the helpers and the guard variables), so that its
   //    own errors are reported before any signature or harness error.
   const guards = `var<private> ${GUARD_COUNTER}: u32;\nvar<private> ${GUARD_FLAG}: u32;`;
@@ -321,11 +314,10 @@ async function prepareStudent(
       diagnostics: alone.diagnostics,
       message:
         `Your shader does not compile: line ${first.line}, column ${first.column}: ${first.message}` +
-        importNote(source, exercise),
+        importNote(normalizeSource(source), exercise),
     });
   }
   // 2. The signature, read from the source.
-  const functions = parseFunctions(source);
   const found = functions.find((f) => f.name === exercise.subject.name);
   if (!found) {
     const names = functions.map((f) => f.name).join(', ');
@@ -362,8 +354,10 @@ async function prepareStudent(
       message: `Your shader does not compile with the grader's harness: ${fullErrors[0]?.message ?? ''}`,
     });
   }
-  const { pipeline, error } = await createPipeline(device, full.module);
+  const { pipeline, error } = await createPipeline(device, full.module, timeoutMs);
   if (error) {
+    // With bindings and entry points refused this is rare (e.g. workgroup memory past
+    // the device's limits); it is the student's shader, so an outcome, never a throw.
     throw new GradeStop({
       status: 'compile-error',
       diagnostics: [{ line: 0, column: 0, message: error, severity: 'error' }],
@@ -435,6 +429,33 @@ function decodeF32(bits: number): number {
   return scratch.getFloat32(0);
 }
 
+/**
+ * A dispatch the device refused, as an outcome (never a plain Error): a validation
+ * error of the student's program (e.g. a pipeline layout the harness's bind group does
+ * not match) is the submission's — 'rejected'; anything else (out of memory, or the
+ * reference refused) is the grader's — 'internal-error'.
+ */
+function dispatchStop(
+  program: Program,
+  what: string,
+  kind: 'validation' | 'out-of-memory',
+  detail: string,
+): GradeStop {
+  if (program.role === 'student' && kind === 'validation') {
+    return new GradeStop({
+      status: 'rejected',
+      message:
+        `The grader could not run your shader while ${what}: ${detail} ` +
+        'Your code may use only its parameters, the provided helpers and module-scope ' +
+        '`const` or `var<private>` declarations.',
+    });
+  }
+  return new GradeStop({
+    status: 'internal-error',
+    message: `The GPU refused the grader's dispatch (${kind}) while ${what}: ${detail}`,
+  });
+}
+
 /** Runs `calls` through a program; one f32 result per call. */
 async function run(
   device: GPUDevice,
@@ -490,12 +511,11 @@ async function run(
   pass.end();
   encoder.copyBufferToBuffer(output, 0, readBack, 0, outputBytes);
   device.queue.submit([encoder.finish()]);
-  const validation = await device.popErrorScope();
-  const memory = await device.popErrorScope();
   try {
-    if (validation ?? memory) {
-      throw new Error(`grader dispatch failed: ${(validation ?? memory)?.message ?? ''}`);
-    }
+    const validation = await withDeviceGuards(device, timeoutMs, what, device.popErrorScope());
+    const memory = await withDeviceGuards(device, timeoutMs, what, device.popErrorScope());
+    if (validation) throw dispatchStop(program, what, 'validation', validation.message);
+    if (memory) throw dispatchStop(program, what, 'out-of-memory', memory.message);
     await withDeviceGuards(device, timeoutMs, what, readBack.mapAsync(GPUMapMode.READ));
     const words = new Uint32Array(readBack.getMappedRange().slice(0));
     readBack.unmap();
@@ -799,17 +819,25 @@ async function gradeProgram(
       try {
         results.push(await runCheck(ctx, check, visibility, index));
       } catch (error) {
-        if (error instanceof GradeStop && !(error instanceof LoopBudgetStop)) {
-          // A timeout or device loss still ends grading (the device may be busy or gone),
-          // but the top-level message must not name a hidden check before publication.
-          if (visibility === 'public') throw error;
-          const hiddenName = `the check "${check.name}"`;
+        if (options.signal?.aborted) throw error;
+        if (!(error instanceof LoopBudgetStop)) {
+          // A timeout, device loss or grader error still ends grading (the device may be
+          // busy or gone), but the top-level message must not name a hidden check
+          // before publication.
+          const stop =
+            error instanceof GradeStop
+              ? error
+              : internalErrorStop(error, `running "${check.name}"`);
+          if (visibility === 'public') throw stop;
           throw new GradeStop({
-            ...error.outcome,
-            message: error.outcome.message.split(hiddenName).join('a hidden check'),
+            ...stop.outcome,
+            message: stop.outcome.message
+              .split(`the check "${check.name}"`)
+              .join('a hidden check')
+              .split(`"${check.name}"`)
+              .join('a hidden check'),
           });
         }
-        if (!(error instanceof LoopBudgetStop)) throw error;
         // Only this check fails; the others are still scored. A hidden check's
         // arguments are left out of its message.
         overruns++;
@@ -848,18 +876,34 @@ async function gradeProgram(
     };
   } catch (error) {
     if (error instanceof GradeStop) return error.outcome;
-    throw error;
+    // The page's cancel button aborts; its runner reports that itself.
+    if (options.signal?.aborted) throw error;
+    return internalErrorStop(error, 'preparing the checks').outcome;
   }
+}
+
+/**
+ * An exception in the grader (not a GradeStop) as an 'internal-error' outcome: a
+ * failure on the grader's side, which reports present as "grading failed, will be
+ * regraded", never as the student's score.
+ */
+function internalErrorStop(error: unknown, where: string): GradeStop {
+  const detail = error instanceof Error ? `${error.name}: ${error.message}` : String(error);
+  return new GradeStop({
+    status: 'internal-error',
+    message: `The grader failed while ${where} (${detail}). This is not a problem with your code.`,
+  });
 }
 
 /**
  * Grades `source` (the student's WGSL) for an exercise (its id, or the definition
  * loadExercise() returned). `options.which`: 'public' runs the public checks (the
  * page); 'all' also the hidden ones (needs a definition with hiddenChecks, as
- * loadFullExercise() in src/grading/node.ts returns). Never throws for anything the
- * submission does: compile errors, wrong signatures, endless loops, GPU timeouts and
- * device loss come back as the outcome's status. Throws only for grader failures
- * (unknown exercise, a broken reference).
+ * loadFullExercise() in src/grading/node.ts returns). Never throws: compile errors,
+ * refused submissions, wrong signatures and endless loops come back as the outcome's
+ * status, and so do the grader's own failures (GPU timeouts, device loss, and any
+ * exception — an unknown exercise, a broken reference — as 'internal-error'). Only a
+ * run aborted through `options.signal` rejects.
  */
 export async function gradeSubmission(
   device: GPUDevice,
@@ -868,17 +912,22 @@ export async function gradeSubmission(
   source: string,
   options: GradeOptions,
 ): Promise<GradeOutcome> {
-  const definition = typeof exercise === 'string' ? await loadExercise(exercise) : exercise;
-  return gradeProgram(
-    device,
-    library,
-    definition,
-    async (timeoutMs) => {
-      const prepared = await prepareStudent(device, library, definition, source, timeoutMs);
-      return prepared.program;
-    },
-    options,
-  );
+  try {
+    const definition = typeof exercise === 'string' ? await loadExercise(exercise) : exercise;
+    return await gradeProgram(
+      device,
+      library,
+      definition,
+      async (timeoutMs) => {
+        const prepared = await prepareStudent(device, library, definition, source, timeoutMs);
+        return prepared.program;
+      },
+      options,
+    );
+  } catch (error) {
+    if (options.signal?.aborted) throw error;
+    return internalErrorStop(error, 'setting up the exercise').outcome;
+  }
 }
 
 /**
