@@ -187,6 +187,12 @@ describe('Gradescope run_autograder', () => {
     expect(JSON.stringify(two.tests)).toMatch(/2 \.wgsl files/);
     const empty = gradescope({}).results;
     expect(JSON.stringify(empty.tests)).toMatch(/empty/);
+    // A symbolic link is not a submitted file: it could point at any file of the machine.
+    const root = gradescopeRoot('gs-symlink', {});
+    symlinkSync('/etc/hostname', join(root, 'submission/beer-law.wgsl'));
+    const linked = run(join(root, 'run_autograder'), { AUTOGRADER_ROOT: root });
+    expect(linked.status).toBe(0);
+    expect(JSON.stringify(readResults(root, 'gradescope').tests)).toMatch(/No \.wgsl file/);
   }, 60_000);
 
   it('honours SCATTERBOOK_PROJECT (this checkout instead of the kit’s copy)', () => {

@@ -18,12 +18,12 @@ import { spawn } from 'node:child_process';
 import { execFileSync } from 'node:child_process';
 import {
   existsSync,
+  lstatSync,
   mkdirSync,
   mkdtempSync,
   readFileSync,
   readdirSync,
   rmSync,
-  statSync,
   writeFileSync,
 } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -40,8 +40,13 @@ export type Platform = 'gradescope' | 'prairielearn';
 const PROJECT = resolve(dirname(fileURLToPath(import.meta.url)), '../../..');
 /** Default wall-clock limit of one grading, seconds (the kits write their own). */
 export const DEFAULT_TIME_LIMIT_S = 60;
-/** Beyond the grade command's own limit, before the driver kills it. */
-const KILL_GRACE_S = 15;
+/**
+ * Beyond the grade command's own limit, before the driver kills it: the command
+ * needs a moment after its limit to write the report and release the GPU.
+ */
+export function killGraceS(timeLimitS: number): number {
+  return Math.min(15, Math.max(2, timeLimitS / 4));
+}
 /** Most of the grader's stderr kept for the instructor. */
 const STDERR_KEEP = 4000;
 
@@ -83,7 +88,11 @@ function hasSystemVulkanLoader(): boolean {
   }
 }
 
-/** Every file under `folder`, relative to it; dot files and macOS archive junk skipped. */
+/**
+ * Every regular file under `folder`, relative to it; dot files, macOS archive junk and
+ * symbolic links skipped (a link could point the grader at any file of the machine, or
+ * loop).
+ */
 function listSubmission(folder: string): string[] {
   const out: string[] = [];
   const walk = (dir: string): void => {
@@ -91,7 +100,7 @@ function listSubmission(folder: string): string[] {
     for (const name of readdirSync(dir).sort()) {
       if (name.startsWith('.') || name === '__MACOSX') continue;
       const path = join(dir, name);
-      const stat = statSync(path);
+      const stat = lstatSync(path);
       if (stat.isDirectory()) walk(path);
       else if (stat.isFile()) out.push(relative(folder, path));
     }
@@ -191,7 +200,7 @@ export async function runGrader(
           child.kill('SIGKILL');
         }
       },
-      (timeLimitS + KILL_GRACE_S) * 1000,
+      (timeLimitS + killGraceS(timeLimitS)) * 1000,
     );
     child.on('error', (error) => {
       clearTimeout(timer);
@@ -209,7 +218,7 @@ export async function runGrader(
     if (!text) {
       const why =
         typeof code === 'string' && code.startsWith('killed')
-          ? `it did not finish within ${timeLimitS + KILL_GRACE_S} s and was ${code}`
+          ? `it did not finish within ${timeLimitS + killGraceS(timeLimitS)} s and was ${code}`
           : `it exited with ${String(code)} without a report`;
       return { failure: `the grade command failed: ${why}.\n${stderr.trim()}`, seconds };
     }
