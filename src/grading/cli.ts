@@ -1,25 +1,28 @@
 // The instructor's command line:
 //   npm run grade -- --exercise ID --submission FILE [--format gradescope|prairielearn|json|junit]
-//                    [--out FILE] [--seed S]
+//                    [--out FILE] [--seed S] [--time-limit SECONDS]
 //   npm run grade -- --self-test [--exercise ID]
-// Grading runs public and hidden checks through Dawn in Node. Exit status: 0 when
-// grading happened (whatever the submission's score, including submissions that do
-// not compile or loop forever), 1 when the self-test fails, 2 for a grader failure
-// (unknown exercise, missing file, bad flags).
-import { existsSync, readFileSync, statSync, writeFileSync } from 'node:fs';
+// Grading runs public and hidden checks through Dawn in Node, in a worker process
+// under a wall-clock limit (supervise.ts). Exit status: 0 when a report was written,
+// whatever it says (a score, a compile error, a refused submission, an endless loop,
+// and also the grader's own failures — timeout, device-lost, internal-error — which
+// the report presents as such); 1 when the self-test fails; 2 for a usage error
+// (unknown exercise, missing file, bad flags), when no report is written.
+import { existsSync, statSync, writeFileSync, writeSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
 import { nodeDevice, releaseNodeDevice } from '../gpu/nodeDevice.ts';
 import { loadShaderLibrary } from '../gpu/shaderSourcesNode.ts';
 import { EXERCISE_IDS } from '../../exercises/index.ts';
-import { gradeSubmission } from './grade.ts';
-import { loadFullExercise } from './node.ts';
+import { loadExercise } from '../../exercises/index.ts';
 import { REPORT_FORMATS, renderReport, summary, type ReportFormat } from './reports.ts';
 import { runSelfTest } from './selfTest.ts';
+import { DEFAULT_TIME_LIMIT_S, gradeUnderLimit } from './supervise.ts';
 
 const USAGE = `usage:
   grade --exercise ID --submission FILE [--format gradescope|prairielearn|json|junit] [--out FILE] [--seed S]
+        [--time-limit SECONDS (default ${DEFAULT_TIME_LIMIT_S})]
   grade --self-test [--exercise ID]
   grade kit gradescope --exercise ID --out DIR | grade kit prairielearn --out DIR  (grade kit --help)
 exercises: ${EXERCISE_IDS.join(', ')}`;
@@ -50,6 +53,7 @@ async function main(argv: string[]): Promise<number> {
         format: { type: 'string', default: 'gradescope' },
         out: { type: 'string' },
         seed: { type: 'string' },
+        'time-limit': { type: 'string' },
         'self-test': { type: 'boolean', default: false },
         help: { type: 'boolean', default: false },
       },
@@ -97,32 +101,66 @@ async function main(argv: string[]): Promise<number> {
     if (!Number.isInteger(seed) || seed < 0 || seed > 0xffffffff)
       throw new UsageError('--seed must be an integer in [0, 2^32)');
   }
-  const source = readFileSync(values.submission, 'utf8');
-  const exercise = await loadFullExercise(values.exercise);
-  const device = await nodeDevice();
-  const outcome = await gradeSubmission(device, library, exercise, source, {
-    which: 'all',
-    ...(seed !== undefined ? { seed } : {}),
-  });
-  const context = { exerciseId: exercise.id, title: exercise.title };
+  let timeLimitS = DEFAULT_TIME_LIMIT_S;
+  if (values['time-limit'] !== undefined) {
+    timeLimitS = /^\d+(\.\d+)?$/.test(values['time-limit'])
+      ? Number(values['time-limit'])
+      : Number.NaN;
+    if (!(timeLimitS > 0 && timeLimitS <= 86_400))
+      throw new UsageError('--time-limit must be a number of seconds in (0, 86400]');
+  }
+  // The public part only, for the title (the worker loads the hidden checks).
+  const title = (await loadExercise(values.exercise)).title;
+  const { outcome, seconds } = await gradeUnderLimit(
+    {
+      exercise: values.exercise,
+      submission: values.submission,
+      ...(seed !== undefined ? { seed } : {}),
+    },
+    timeLimitS,
+    title,
+  );
+  const context = { exerciseId: values.exercise, title, executionTimeS: seconds };
   note(summary(outcome, context));
   const report = renderReport(format, outcome, context);
   if (values.out) {
     writeFileSync(values.out, report);
     note(`${format} report written to ${values.out}`);
   } else {
-    process.stdout.write(report);
+    writeAllSync(1, report);
   }
   return 0;
 }
 
+/** Writes all of `text` to a file descriptor before returning (process.exit follows). */
+function writeAllSync(fd: number, text: string): void {
+  const bytes = Buffer.from(text, 'utf8');
+  let offset = 0;
+  while (offset < bytes.length) {
+    try {
+      offset += writeSync(fd, bytes, offset);
+    } catch (error) {
+      // A non-blocking pipe that is full: try again.
+      if ((error as NodeJS.ErrnoException).code !== 'EAGAIN') throw error;
+    }
+  }
+}
+
+/** Releases the GPU device, but never waits more than `ms` for it (the process must exit). */
+function releaseWithin(ms: number): Promise<void> {
+  return Promise.race([
+    releaseNodeDevice().catch(() => undefined),
+    new Promise<void>((resolve) => setTimeout(resolve, ms).unref()),
+  ]);
+}
+
 main(process.argv.slice(2))
   .then(async (code) => {
-    await releaseNodeDevice();
+    await releaseWithin(5000);
     process.exit(code);
   })
   .catch(async (error: unknown) => {
-    await releaseNodeDevice();
+    await releaseWithin(5000);
     if (error instanceof UsageError) {
       console.error(`grade: ${error.message}\n${USAGE}`);
     } else {
