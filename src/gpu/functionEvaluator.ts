@@ -178,6 +178,32 @@ export function unpackResult(spec: FunctionSpec, output: Uint32Array, index: num
       : raw.map(bitsToF32);
 }
 
+/** The linked kernel, packed inputs and dispatch size of one evaluation (any WebGPU engine). */
+export interface EvaluationJob {
+  code: string;
+  entryPoint: 'main';
+  inputs: [Uint32Array];
+  outputWords: number;
+  workgroups: [number];
+}
+
+/** Links and packs all calls for one dispatch; evaluateOnGpu runs it, tests also on wgpu. */
+export async function evaluationJob(
+  library: ShaderLibrary,
+  spec: FunctionSpec,
+  calls: readonly (readonly Argument[])[],
+  describeCall?: (index: number) => string,
+): Promise<EvaluationJob> {
+  const code = await linkKernel(library, generateKernel(spec, calls.length));
+  return {
+    code,
+    entryPoint: 'main',
+    inputs: [packArguments(spec, calls, describeCall)],
+    outputWords: calls.length * resultWords(spec.result),
+    workgroups: [Math.ceil(calls.length / WORKGROUP_SIZE)],
+  };
+}
+
 /** Links, packs and runs all calls in one dispatch; one result (array of components) per call. */
 export async function evaluateOnGpu(
   device: GPUDevice,
@@ -186,14 +212,8 @@ export async function evaluateOnGpu(
   calls: readonly (readonly Argument[])[],
   describeCall?: (index: number) => string,
 ): Promise<number[][]> {
-  const code = await linkKernel(library, generateKernel(spec, calls.length));
-  const inputs = packArguments(spec, calls, describeCall);
-  const { output } = await runCompute(device, {
-    code,
-    inputs: [inputs],
-    outputWords: calls.length * resultWords(spec.result),
-    workgroups: [Math.ceil(calls.length / WORKGROUP_SIZE)],
-  });
+  const job = await evaluationJob(library, spec, calls, describeCall);
+  const { output } = await runCompute(device, job);
   return calls.map((_, index) => unpackResult(spec, output, index));
 }
 

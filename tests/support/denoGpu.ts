@@ -88,8 +88,10 @@ export function denoBinary(): string | null {
   return candidates.find((path) => existsSync(path)) ?? null;
 }
 
-/** The Vulkan driver manifest for wgpu: lavapipe when installed, else SwiftShader. */
+/** The Vulkan driver manifest for wgpu: $SB_WGPU_ICD, else lavapipe when installed, else SwiftShader. */
 export function vulkanIcd(): string | null {
+  const forced = process.env.SB_WGPU_ICD;
+  if (forced) return existsSync(forced) ? forced : null;
   const folder = '/usr/share/vulkan/icd.d';
   const lavapipe = existsSync(folder)
     ? readdirSync(folder).find((name) => /^lvp_icd\..*\.json$/.test(name))

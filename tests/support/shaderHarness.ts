@@ -16,16 +16,24 @@
 //
 // Inputs are rounded to f32 before both sides see them (physics.md §10: the
 // oracle works on the same f32 inputs). Every f32 output must be finite.
+//
+// Each table runs on two engines with the same tolerances: Dawn (Tint, as in Chrome)
+// in this process, and wgpu (naga, as in Firefox) through Deno, all of a test file's
+// tables in one batch (tests/support/denoGpu.ts).
 import { beforeAll, describe, expect, it } from 'vitest';
 import {
   evaluateCases,
+  evaluateTwin,
+  evaluationJob,
   generateKernel,
+  unpackResult,
   type Argument,
   type ArgumentType,
   type CaseOutcome,
   type ResultType,
   type ScalarType,
 } from '../../src/gpu/functionEvaluator.ts';
+import { runOnWgpu } from './denoGpu.ts';
 import { nodeDevice } from './nodeGpu.ts';
 import { SHADER_LIBRARY } from './shaderLibrary.ts';
 import { ulpDistance } from './f32.ts';
@@ -80,6 +88,67 @@ export async function evaluateTable(table: ShaderFunctionTable): Promise<CaseOut
   return evaluateCases(device, SHADER_LIBRARY, table);
 }
 
+// The same tables on the second engine, wgpu (naga, as in Firefox) through Deno.
+// Every table a test file declares is collected at collection time; the first
+// wgpu beforeAll sends them all in one batch (one Deno process per test file), and
+// each table's outcomes are compared with the twin here in Node under the same
+// tolerances as on Dawn.
+const wgpuTables: ShaderFunctionTable[] = [];
+let wgpuBatch: Promise<Map<ShaderFunctionTable, CaseOutcome[] | Error>> | null = null;
+
+async function evaluateTablesOnWgpu(
+  tables: readonly ShaderFunctionTable[],
+): Promise<Map<ShaderFunctionTable, CaseOutcome[] | Error>> {
+  const outcomes = new Map<ShaderFunctionTable, CaseOutcome[] | Error>();
+  const jobs = [];
+  const sent: ShaderFunctionTable[] = [];
+  for (const table of tables) {
+    try {
+      const job = await evaluationJob(
+        SHADER_LIBRARY,
+        table,
+        table.cases.map((testCase) => testCase.args),
+        (index) => `case "${table.cases[index]?.name}"`,
+      );
+      jobs.push({ name: `${table.module}.${table.fn}`, ...job });
+      sent.push(table);
+    } catch (error) {
+      outcomes.set(table, error as Error);
+    }
+  }
+  const answer = await runOnWgpu({ evaluate: jobs });
+  sent.forEach((table, k) => {
+    const result = answer.evaluate[k];
+    if (!result?.output) {
+      outcomes.set(table, new Error(`wgpu: ${result?.error ?? 'no answer'}`));
+      return;
+    }
+    const output = result.output;
+    outcomes.set(
+      table,
+      table.cases.map((testCase, index) => ({
+        gpu: unpackResult(table, output, index),
+        twin: evaluateTwin(table, table.twin, testCase.args),
+      })),
+    );
+  });
+  return outcomes;
+}
+
+/** The table's outcomes on wgpu (Deno), from this test file's single batch. */
+export async function evaluateTableOnWgpu(table: ShaderFunctionTable): Promise<CaseOutcome[]> {
+  if (!wgpuTables.includes(table)) wgpuTables.push(table);
+  wgpuBatch ??= evaluateTablesOnWgpu([...wgpuTables]);
+  let outcome = (await wgpuBatch).get(table);
+  if (outcome === undefined) {
+    // Declared after the batch left (not at collection time): a batch of its own.
+    outcome = (await evaluateTablesOnWgpu([table])).get(table);
+  }
+  if (outcome === undefined || outcome instanceof Error)
+    throw outcome ?? new Error('no wgpu outcome');
+  return outcome;
+}
+
 export function withinTolerance(actual: number, reference: number, tolerance: Tolerance): boolean {
   if (actual === reference) return true;
   const difference = Math.abs(actual - reference);
@@ -99,12 +168,25 @@ function describeTolerance(tolerance: Tolerance): string {
   return `${parts.join(' or ')} (${tolerance.reason})`;
 }
 
-/** Registers one Vitest test per case: WGSL result vs twin (and vs the published value). */
+/**
+ * Registers one Vitest test per case: WGSL result vs twin (and vs the published value),
+ * once on Dawn (Tint, as in Chrome) and once on wgpu (naga, as in Firefox).
+ */
 export function describeShaderFunction(table: ShaderFunctionTable): void {
-  describe(`${table.module}.${table.fn}: WGSL vs float64 twin`, () => {
+  wgpuTables.push(table);
+  describeOn('', table, () => evaluateTable(table));
+  describeOn(' on wgpu (naga, Deno)', table, () => evaluateTableOnWgpu(table));
+}
+
+function describeOn(
+  engine: string,
+  table: ShaderFunctionTable,
+  evaluate: () => Promise<CaseOutcome[]>,
+): void {
+  describe(`${table.module}.${table.fn}: WGSL${engine} vs float64 twin`, () => {
     let outcomes: CaseOutcome[] = [];
     beforeAll(async () => {
-      outcomes = await evaluateTable(table);
+      outcomes = await evaluate();
     }, 60_000);
     table.cases.forEach((testCase, caseIndex) => {
       const tolerance = testCase.tolerance ?? table.tolerance;
