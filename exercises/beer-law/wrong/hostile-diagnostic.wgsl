@@ -1,0 +1,4 @@
+diagnostic(off, derivative_uniformity);
+fn transmittance(sigmaT: f32, d: f32) -> f32 {
+  return exp(-max(sigmaT * d, 0.0));
+}

@@ -1,0 +1,4 @@
+override scale: f32 = 1.0;
+fn transmittance(sigmaT: f32, d: f32) -> f32 {
+  return exp(-max(sigmaT * d, 0.0)) * scale;
+}
