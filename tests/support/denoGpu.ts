@@ -4,8 +4,9 @@
 // the pipelines to create from them) and compute jobs to run; the answer comes back
 // as JSON. Deno starts in ~0.2 s, so each test file sends one batch.
 //
-// Vulkan driver: lavapipe (Mesa's CPU driver, Debian's mesa-vulkan-drivers) when it
-// is installed, else the SwiftShader driver Debian's chromium ships. Without Deno or
+// Vulkan driver (wgpu's Vulkan backend only, as Firefox on Linux): lavapipe (Mesa's
+// CPU driver, Debian's mesa-vulkan-drivers) when it is installed, else the SwiftShader
+// driver Debian's chromium ships; SB_WGPU_ICD names another manifest. Without Deno or
 // without an adapter the batch fails with a message that says what to install: a
 // second engine that silently skips would hide exactly the failures it is for.
 import { spawn } from 'node:child_process';
@@ -138,6 +139,9 @@ export async function runOnWgpu(
     env: {
       ...process.env,
       VK_ICD_FILENAMES: icd,
+      // Vulkan only, as Firefox on Linux: without this wgpu quietly falls back to its
+      // OpenGL backend (Mesa's llvmpipe) when the Vulkan driver does not load.
+      DENO_WEBGPU_BACKEND: 'vulkan',
       // Deno warns on stderr when this is unset or not private; a fresh folder is both.
       XDG_RUNTIME_DIR: mkdtempSync(join(tmpdir(), 'sb-deno-')),
       NO_COLOR: '1',
@@ -162,8 +166,11 @@ export async function runOnWgpu(
   }
   const errorText = Buffer.concat(stderr).toString('utf8').trim();
   if (code !== 0) {
+    const hint = /no WebGPU adapter/.test(errorText)
+      ? ' (the Vulkan driver did not load: `sudo apt-get install -y mesa-vulkan-drivers`, or set SB_WGPU_ICD to a working ICD manifest)'
+      : '';
     throw new Error(
-      `wgpu (Deno ${deno}, VK_ICD_FILENAMES=${icd}) exited with ${code ?? 'a signal (time limit?)'}: ${errorText || 'no message'}`,
+      `wgpu (Deno ${deno}, VK_ICD_FILENAMES=${icd}) exited with ${code ?? 'a signal (time limit?)'}: ${errorText || 'no message'}${hint}`,
     );
   }
   const answer = JSON.parse(Buffer.concat(stdout).toString('utf8')) as Omit<
