@@ -171,7 +171,8 @@ describe('Gradescope run_autograder', () => {
   it('ends hostile submissions in a report with no marks, within the time limit', () => {
     for (const source of [HOSTILE_BINDING, HOSTILE_LOOP]) {
       const { results, seconds, log } = gradescope({ 'beer-law.wgsl': source });
-      expect(results.score ?? 0, log).toBe(0);
+      // The student's outcome (refused, loop budget), not a grader failure: a score of 0.
+      expect(results.score, log).toBe(0);
       expect(sumOf(results.tests, 'score')).toBe(0);
       expect((results.tests ?? []).some((t) => t['visibility'] === 'visible')).toBe(true);
       expect(seconds).toBeLessThan(TIME_LIMIT_S + 20);
@@ -245,6 +246,7 @@ describe('PrairieLearn entrypoint', () => {
     const hostile = prairieLearn({ 'beer-law.wgsl': HOSTILE_BINDING }).results;
     expect(hostile.score ?? 0).toBe(0);
     expect(hostile.gradable).toBe(false);
+    expect(String(hostile.message)).toMatch(/refused.*@binding/s);
     const none = prairieLearn({}).results;
     expect(none).toMatchObject({ gradable: false });
     expect(String(none.message)).toMatch(/No \.wgsl file/);

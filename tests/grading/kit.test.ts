@@ -4,7 +4,7 @@
 // question.html, starter), the shell scripts' syntax, the choice of the submitted
 // file, and the results.json validators on reports that break each rule.
 import { execFileSync, spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, readdirSync, rmSync, statSync } from 'node:fs';
+import { mkdtempSync, readFileSync, readdirSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { inflateRawSync } from 'node:zlib';
@@ -94,6 +94,31 @@ describe('project copy', () => {
     expect(closure.packages).not.toContain('@webgpu/types');
     expect(closure.files).not.toContain('src/grading/kit/index.ts');
     expect(closure.files.some((f) => f.startsWith('src/widgets/'))).toBe(false);
+  });
+
+  it('follows modules named in strings and loaded at run time (a child process’s script)', () => {
+    const root = mkdtempSync(join(tmpdir(), 'kit-closure-'));
+    try {
+      writeFileSync(
+        join(root, 'main.ts'),
+        "// import { x } from './commented.ts';\n" +
+          "import { a } from './a.ts';\n" +
+          "const worker = join(dirname(fileURLToPath(import.meta.url)), 'worker.ts');\n" +
+          "const missing = 'not-here.ts';\n",
+      );
+      writeFileSync(
+        join(root, 'a.ts'),
+        "import type { T } from 'types-only';\nimport 'side-effect';\n",
+      );
+      writeFileSync(join(root, 'worker.ts'), "import { b } from 'real-package/sub';\n");
+      writeFileSync(join(root, 'commented.ts'), '');
+      expect(sourceClosure(root, ['main.ts'])).toEqual({
+        files: ['a.ts', 'main.ts', 'worker.ts'],
+        packages: ['real-package', 'side-effect'],
+      });
+    } finally {
+      rmSync(root, { recursive: true, force: true });
+    }
   });
 
   it('installs exactly the checkout’s versions, with a lockfile closed under dependencies', () => {

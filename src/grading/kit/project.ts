@@ -49,6 +49,12 @@ function listFiles(root: string, folder: string): string[] {
 const IMPORT_FROM = /\b(import|export)(\s+type)?\s[^'"`;]*?\bfrom\s*['"]([^'"]+)['"]/g;
 const IMPORT_BARE = /^\s*import\s*['"]([^'"]+)['"]/gm;
 const IMPORT_DYNAMIC = /\bimport\s*\(\s*['"]([^'"]+)['"]\s*\)/g;
+/**
+ * A module named in a string and loaded at run time, e.g. a child process's script
+ * `join(dirname(fileURLToPath(import.meta.url)), 'gradeWorker.ts')`: followed when
+ * such a file exists next to the module that names it.
+ */
+const MODULE_STRING = /['"`]((?:\.{1,2}\/)?[\w./-]+\.(?:ts|mts|js|mjs))['"`]/g;
 
 function packageName(specifier: string): string {
   const parts = specifier.split('/');
@@ -83,6 +89,15 @@ export function sourceClosure(
       found.push({ specifier: m[1] ?? '', typeOnly: false });
     for (const m of text.matchAll(IMPORT_DYNAMIC))
       found.push({ specifier: m[1] ?? '', typeOnly: false });
+    for (const m of text.matchAll(MODULE_STRING)) {
+      const path = posix.normalize(posix.join(posix.dirname(file), m[1] ?? ''));
+      if (
+        !path.startsWith('..') &&
+        existsSync(join(root, path)) &&
+        statSync(join(root, path)).isFile()
+      )
+        queue.push(path);
+    }
     for (const { specifier, typeOnly } of found) {
       if (specifier.startsWith('.')) {
         queue.push(posix.normalize(posix.join(posix.dirname(file), specifier)));
