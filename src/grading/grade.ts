@@ -36,6 +36,7 @@ import {
 } from './stats.ts';
 import { normalCritical } from '../statistics/distributions.ts';
 import type { CheckResult, GradeOptions, GradeOutcome, SourceDiagnostic } from './types.ts';
+import { withEngineNote } from './engineNotes.ts';
 
 export const DEFAULT_SEED = 20261123;
 export const DEFAULT_TIMEOUT_MS = 20_000;
@@ -223,7 +224,9 @@ async function compile(
     diagnostics.push({
       line: mapped?.line ?? 0,
       column: mapped?.column ?? 0,
-      message: mapped ? message.message : `(in the grader's harness) ${message.message}`,
+      message: mapped
+        ? withEngineNote(message.message)
+        : `(in the grader's harness) ${message.message}`,
       severity: message.type === 'error' ? 'error' : 'warning',
     });
   }

@@ -5,6 +5,7 @@ import { afterEach, describe, expect, it } from 'vitest';
 import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { withEngineNote } from '../../src/grading/engineNotes.ts';
 import { denoBinary, runOnWgpu, vulkanIcd } from '../support/denoGpu.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 
@@ -56,6 +57,9 @@ describe('wgpu through Deno', () => {
     const [endsInLoop, breaks] = answer.compile;
     const nagaErrors = endsInLoop?.messages.filter((m) => m.type === 'error') ?? [];
     expect(nagaErrors.map((m) => m.message).join('\n')).toMatch(/return.*None/);
+    // The grader explains naga's message to a student in Firefox, and only that one.
+    expect(withEngineNote(nagaErrors[0]?.message ?? '')).toMatch(/break.*return once after it/s);
+    expect(withEngineNote('unknown identifier `x`')).toBe('unknown identifier `x`');
     expect(breaks?.messages.filter((m) => m.type === 'error')).toEqual([]);
     expect(breaks?.pipelines).toEqual([{ kind: 'compute', entry: 'main', error: null }]);
     // Tint: the first compiles without error; a return after the loop only warns.
