@@ -6,7 +6,7 @@
 // The sources, linked here in Node exactly as the book links them:
 // - every kernel in shaders/kernels/ (as the widgets link it, no conditions);
 // - the scene kernel under the plan of every example scene in public/scenes/, the
-//   general conditions, each condition alone, none and all;
+//   general conditions, each condition alone, every pair of conditions, none and all;
 // - every library module linked as a root (all of its functions), under no
 //   conditions and under the general ones;
 // - the evaluation kernel of every library function the command line can evaluate
@@ -73,6 +73,16 @@ async function sceneVariants(): Promise<{ name: string; conditions: Conditions }
   variants.push({ name: 'no condition', conditions: conditionsWith([]) });
   for (const name of CONDITION_NAMES)
     variants.push({ name: `only ${name}`, conditions: conditionsWith([name]) });
+  // Every pair: a condition's code may use another's (e.g. @if(gridMedia && !…)), and the
+  // widgets plan scenes from their controls, so pairs the examples miss do occur.
+  CONDITION_NAMES.forEach((first, i) =>
+    CONDITION_NAMES.slice(i + 1).forEach((second) =>
+      variants.push({
+        name: `only ${first} and ${second}`,
+        conditions: conditionsWith([first, second]),
+      }),
+    ),
+  );
   variants.push({ name: 'every condition', conditions: conditionsWith(CONDITION_NAMES) });
   return variants;
 }
@@ -109,7 +119,7 @@ async function graderSources(): Promise<{ name: string; code: string }[]> {
     await gradeReference(recordingDevice(device, referenceCode), library, exercise, {
       which: 'public',
     });
-    expect(referenceCode.length, `${id} reference: the grader compiled it`).toBeGreaterThan(0);
+    if (referenceCode.length === 0) setupProblems.push(`${id}: the reference was not compiled`);
     referenceCode.forEach((code, k) =>
       sources.push({ name: `exercise ${id}, reference solution: program ${k + 1}`, code }),
     );
@@ -130,7 +140,9 @@ async function graderSources(): Promise<{ name: string; code: string }[]> {
       await gradeSubmission(recordingDevice(device, recorded), library, exercise, source, {
         which: 'public',
       });
-      expect(recorded.length, `${id} ${label}: the grader compiled something`).toBeGreaterThan(0);
+      // A known-wrong submission may be refused before compiling (e.g. extra bindings).
+      if (recorded.length === 0 && label === 'starter')
+        setupProblems.push(`${id}: the starter was not compiled`);
       recorded.forEach((code, k) =>
         sources.push({ name: `exercise ${id}, ${label}: program ${k + 1}`, code }),
       );
