@@ -63,7 +63,7 @@ export function driverInvocation(options: {
   const outer = options.timeLimitS + 60;
   return `mkdir -p "$(dirname "${options.results}")"
 rm -f "${options.results}"
-# The driver kills the grader after the limit (+15 s); the outer timeout only guards
+# The driver kills the grader shortly after the limit; the outer timeout only guards
 # against the driver itself hanging.
 ( cd "$PROJECT" && timeout --kill-after=5 ${outer} node --import tsx src/grading/kit/driver.ts \\
     ${options.platform} --exercise ${options.exerciseWord} --time-limit ${options.timeLimitS} )
