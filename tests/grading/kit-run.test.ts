@@ -293,6 +293,9 @@ describe('driver against a broken grader', () => {
         if (platform === 'gradescope') {
           expect(results.score).toBeUndefined();
           expect(results.tests?.[0]?.['name']).toBe('Grading failed — will be regraded');
+          expect(results['extra_data']).toEqual({
+            grader_failure: name === 'hangs' ? 'timeout' : 'internal-error',
+          });
         } else {
           expect(results.gradable).toBe(false);
           expect(String(results.message)).toMatch(/regraded/);

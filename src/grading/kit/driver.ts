@@ -139,6 +139,8 @@ interface GradeRun {
   report?: string;
   /** Why there is no valid report (for the instructor). */
   failure?: string;
+  /** The command ran past its wall-clock limit and was killed. */
+  killed?: boolean;
   seconds: number;
 }
 
@@ -216,11 +218,11 @@ export async function runGrader(
   try {
     const text = existsSync(out) ? readFileSync(out, 'utf8') : '';
     if (!text) {
-      const why =
-        typeof code === 'string' && code.startsWith('killed')
-          ? `it did not finish within ${timeLimitS + killGraceS(timeLimitS)} s and was ${code}`
-          : `it exited with ${String(code)} without a report`;
-      return { failure: `the grade command failed: ${why}.\n${stderr.trim()}`, seconds };
+      const killed = typeof code === 'string' && code.startsWith('killed');
+      const why = killed
+        ? `it did not finish within ${timeLimitS + killGraceS(timeLimitS)} s and was ${code}`
+        : `it exited with ${String(code)} without a report`;
+      return { failure: `the grade command failed: ${why}.\n${stderr.trim()}`, killed, seconds };
     }
     const problems = problemsOf(platform, text);
     if (problems.length)
@@ -331,12 +333,18 @@ export async function gradeForPlatform(
         text = run.report;
       } else {
         process.stderr.write(`driver: ${run.failure ?? 'unknown failure'}\n`);
+        // Both are the grader's failures, reported as such (to be regraded), never as a 0.
         text = fallbackReport(
           platform,
-          {
-            status: 'internal-error',
-            message: 'the grader stopped without a report (the details are in the grader log).',
-          },
+          run.killed
+            ? {
+                status: 'timeout',
+                message: `grading did not finish within its limit of ${timeLimitS} s and was stopped.`,
+              }
+            : {
+                status: 'internal-error',
+                message: 'the grader stopped without a report (the details are in the grader log).',
+              },
           exerciseId,
           title,
           run.seconds,
