@@ -4,13 +4,21 @@
 // question.html, starter), the shell scripts' syntax, the choice of the submitted
 // file, and the results.json validators on reports that break each rule.
 import { execFileSync, spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, readdirSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import {
+  existsSync,
+  mkdtempSync,
+  readFileSync,
+  readdirSync,
+  rmSync,
+  statSync,
+  writeFileSync,
+} from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { inflateRawSync } from 'node:zlib';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { EXERCISE_IDS, loadExercise } from '../../exercises/index.ts';
-import { pickSubmission } from '../../src/grading/kit/driver.ts';
+import { VULKAN_ICDS, graderEnvironment, pickSubmission } from '../../src/grading/kit/driver.ts';
 import { projectCopy, sourceClosure, PROJECT_ROOT } from '../../src/grading/kit/project.ts';
 import { questionUuid, statementHtml } from '../../src/grading/kit/prairielearn.ts';
 import { gradescopeProblems, prairieLearnProblems } from '../../src/grading/kit/validate.ts';
@@ -164,6 +172,19 @@ describe('project copy', () => {
         expect(found, `${key} → ${dep}`).toBe(true);
       }
     }
+  });
+});
+
+describe('grader environment', () => {
+  it('keeps a chosen Vulkan driver, else picks the first software driver installed', () => {
+    expect(graderEnvironment({ VK_ICD_FILENAMES: '/x/icd.json' })['VK_ICD_FILENAMES']).toBe(
+      '/x/icd.json',
+    );
+    const installed = VULKAN_ICDS.find((path) => existsSync(path));
+    expect(graderEnvironment({})['VK_ICD_FILENAMES']).toBe(installed);
+    // SwiftShader first: Dawn refuses the lavapipe of Mesa 22.3.
+    expect(VULKAN_ICDS[0]).toMatch(/swiftshader/);
+    expect(VULKAN_ICDS.at(-1)).toMatch(/lvp_icd/);
   });
 });
 
