@@ -122,11 +122,16 @@ function prairieLearn(
   writeFileSync(join(root, 'data/data.json'), JSON.stringify(data));
   for (const [path, content] of Object.entries(student))
     writeFileSync(join(root, 'student', path), content);
+  // As in the image: the sources from serverFilesCourse, the packages installed apart.
   const result = run(
     join(plProject, 'entrypoint.sh'),
-    { GRADE_ROOT: root, SCATTERBOOK_PROJECT: plProject },
+    { GRADE_ROOT: root, SCATTERBOOK_NODE_MODULES: join(PROJECT_ROOT, 'node_modules') },
     [exercise],
   );
+  expect(
+    existsSync(join(plProject, 'node_modules')),
+    'entrypoint wrote into serverFilesCourse',
+  ).toBe(false);
   expect(result.status, result.log).toBe(0);
   return { results: readResults(root, 'prairielearn'), ...result };
 }
@@ -143,8 +148,7 @@ beforeAll(async () => {
   ).toBe(0);
   gsKit = join(work, 'gs-kit/autograder');
   expect(await runKit(['prairielearn', '--out', join(work, 'pl-kit'), ...limit])).toBe(0);
-  plProject = join(work, 'pl-kit/grader-image/scatterbook');
-  symlinkSync(join(PROJECT_ROOT, 'node_modules'), join(plProject, 'node_modules'));
+  plProject = join(work, 'pl-kit/serverFilesCourse/scatterbook');
 }, 60_000);
 
 afterAll(() => rmSync(work, { recursive: true, force: true }));

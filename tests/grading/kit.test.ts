@@ -368,7 +368,8 @@ describe('grade kit command', () => {
         externalGradingOptions: {
           enabled: true,
           image: 'me/scatterbook-grader:2',
-          entrypoint: `/opt/scatterbook/entrypoint.sh ${id}`,
+          serverFilesCourse: ['scatterbook/'],
+          entrypoint: `/grade/serverFilesCourse/scatterbook/entrypoint.sh ${id}`,
           timeout: 80,
         },
       });
@@ -384,7 +385,30 @@ describe('grade kit command', () => {
     expect(docker).toMatch(/^FROM node:20-bookworm/m);
     expect(docker).toContain('VK_ICD_FILENAMES=/usr/lib/chromium/vk_swiftshader_icd.json');
     expect(docker).toContain('--self-test');
-    const entry = join(dir, 'grader-image/scatterbook/entrypoint.sh');
+    // The image may be public: only the throwaway self-test stage sees the sources.
+    const stages = docker.split(/^FROM /m).slice(1);
+    expect(stages.map((stage) => stage.split(/\s/)[0])).toEqual([
+      'node:20-bookworm-slim',
+      'runtime',
+      'runtime',
+    ]);
+    for (const stage of [stages[0], stages[2]]) expect(stage).not.toContain('serverFilesCourse');
+    expect(stages[1]).toContain('serverFilesCourse/scatterbook/');
+    expect(listTree(join(dir, 'grader-image')).sort()).toEqual([
+      'Dockerfile',
+      'package-lock.json',
+      'package.json',
+    ]);
+    const server = join(dir, 'serverFilesCourse/scatterbook');
+    for (const file of ['package.json', 'package-lock.json'])
+      expect(readFileSync(join(dir, 'grader-image', file), 'utf8')).toBe(
+        readFileSync(join(server, file), 'utf8'),
+      );
+    expect(listTree(server)).toContain('exercises/beer-law/hidden.ts');
+    expect(listTree(dir).some((p) => p.startsWith('questions/') && p.includes('hidden'))).toBe(
+      false,
+    );
+    const entry = join(server, 'entrypoint.sh');
     expect(statSync(entry).mode & 0o777).toBe(0o755);
     expect(spawnSync('bash', ['-n', entry]).status).toBe(0);
     expect(readFileSync(entry, 'utf8')).toContain('--time-limit 50');

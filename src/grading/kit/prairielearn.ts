@@ -32,8 +32,11 @@ export interface PrairieLearnKitOptions {
   image: string;
 }
 
-/** Where the image keeps the grader. */
+/** Where the image installs the grader's npm packages (package.json, node_modules). */
 export const IMAGE_PROJECT = '/opt/scatterbook';
+export const IMAGE_NODE_MODULES = `${IMAGE_PROJECT}/node_modules`;
+/** Overrides IMAGE_NODE_MODULES for entrypoint.sh (the kit tests use this checkout's). */
+export const NODE_MODULES_ENV = 'SCATTERBOOK_NODE_MODULES';
 /** PrairieLearn's largest external-grading timeout, seconds. */
 const PL_MAX_TIMEOUT_S = 600;
 /** The question folder's topic; it must exist in the course's infoCourse.json. */
@@ -106,11 +109,27 @@ function entrypointScript(options: PrairieLearnKitOptions, fallback: string): st
 # Usage: entrypoint.sh EXERCISE-ID (the question's info.json passes it). Reads
 # $GRADE_ROOT/student/*.wgsl (else the _files of $GRADE_ROOT/data/data.json), default
 # GRADE_ROOT=/grade; writes $GRADE_ROOT/results/results.json, also when grading fails.
+# The grader's sources (hidden checks included) come from the course's serverFilesCourse,
+# which students cannot read; the image, which may be public, holds only the installed
+# packages ($${NODE_MODULES_ENV}, default ${IMAGE_NODE_MODULES}).
 # $${PROJECT_ENV} points at another installed copy of the project (the kit tests use it).
 ROOT="\${GRADE_ROOT:-/grade}"
-PROJECT="\${${PROJECT_ENV}:-${IMAGE_PROJECT}}"
+HERE="$(cd "$(dirname "\${BASH_SOURCE[0]}")" && pwd)"
+PROJECT="\${${PROJECT_ENV}:-$HERE}"
+MODULES="\${${NODE_MODULES_ENV}:-${IMAGE_NODE_MODULES}}"
 export GRADE_ROOT="$ROOT"
 EXERCISE="\${1:-}"
+if [ ! -e "$PROJECT/node_modules" ] && [ -d "$MODULES" ]; then
+  # A private copy with the image's packages, so nothing is written into /grade.
+  WORK="$(mktemp -d)"
+  trap 'rm -rf "$WORK"' EXIT
+  cp -R "$PROJECT/." "$WORK/"
+  ln -s "$MODULES" "$WORK/node_modules"
+  if ! cmp -s "$MODULES/../package-lock.json" "$WORK/package-lock.json"; then
+    echo "entrypoint: the image's packages were not built from this kit; rebuild the image" >&2
+  fi
+  PROJECT="$WORK"
+fi
 ${driverInvocation({
   platform: 'prairielearn',
   exerciseWord: '"$EXERCISE"',
@@ -120,11 +139,16 @@ ${driverInvocation({
 })}`;
 }
 
+/** The image's Dockerfile; its build context is the kit's root folder. */
 function dockerfile(): string {
   return `# PrairieLearn external-grader image for the Scatterbook exercises (written by
-# \`npm run grade -- kit prairielearn\`). Build and push it where PrairieLearn can pull it:
-#   docker build -t YOUR-USER/scatterbook-grader:1 . && docker push YOUR-USER/scatterbook-grader:1
-FROM node:20-bookworm-slim
+# \`npm run grade -- kit prairielearn\`). From the kit's root folder:
+#   docker build -f grader-image/Dockerfile -t YOUR-USER/scatterbook-grader:1 .
+#   docker push YOUR-USER/scatterbook-grader:1
+# The image holds Node.js, SwiftShader and the grader's npm packages, but none of the
+# grader's sources: the hidden checks stay in the course's serverFilesCourse, because an
+# image on Docker Hub can be pulled by anyone.
+FROM node:20-bookworm-slim AS runtime
 # Debian's chromium ships SwiftShader, the software Vulkan driver Dawn (the \`webgpu\`
 # npm package) uses for WebGPU without a GPU; libvulkan1 is the Vulkan loader.
 RUN apt-get update \\
@@ -132,11 +156,21 @@ RUN apt-get update \\
  && rm -rf /var/lib/apt/lists/*
 ENV VK_ICD_FILENAMES=/usr/lib/chromium/vk_swiftshader_icd.json
 WORKDIR ${IMAGE_PROJECT}
-COPY ${PROJECT_FOLDER}/ ${IMAGE_PROJECT}/
-RUN npm ci --no-audit --no-fund && chmod 755 ${IMAGE_PROJECT}/entrypoint.sh
-# The build fails unless every exercise's reference scores full marks and every
-# known-wrong submission its expected score on this image.
-RUN node --import tsx src/grading/cli.ts --self-test
+COPY grader-image/package.json grader-image/package-lock.json ./
+RUN npm ci --no-audit --no-fund
+
+# A throwaway stage proves the image grades: every exercise's reference scores full
+# marks and every known-wrong submission its expected score. Its files (the sources)
+# do not reach the final image.
+FROM runtime AS self-test
+COPY serverFilesCourse/${PROJECT_FOLDER}/ /tmp/${PROJECT_FOLDER}/
+RUN ln -s ${IMAGE_NODE_MODULES} /tmp/${PROJECT_FOLDER}/node_modules \\
+ && cd /tmp/${PROJECT_FOLDER} \\
+ && node --import tsx src/grading/cli.ts --self-test \\
+ && echo passed > ${IMAGE_PROJECT}/self-test
+
+FROM runtime
+COPY --from=self-test ${IMAGE_PROJECT}/self-test ${IMAGE_PROJECT}/self-test
 `;
 }
 
@@ -145,11 +179,13 @@ function courseReadme(options: PrairieLearnKitOptions, ids: readonly string[]): 
 
 Written by \`npm run grade -- kit prairielearn\`. Steps:
 
-1. Build and push the grader image (needs Docker):
-   \`cd grader-image && docker build -t ${options.image} . && docker push ${options.image}\`
+1. Build and push the grader image (needs Docker), from this folder:
+   \`docker build -f grader-image/Dockerfile -t ${options.image} . && docker push ${options.image}\`
    (the build runs the grader's self-test). If you pushed under another name, write the
-   kit again with \`--image NAME\`.
-2. Copy \`questions/scatterbook/\` into your course's \`questions/\` folder and add the
+   kit again with \`--image NAME\`. The image holds no hidden checks and may be public.
+2. Copy \`questions/scatterbook/\` into your course's \`questions/\` folder and
+   \`serverFilesCourse/scatterbook/\` into its \`serverFilesCourse/\` (the grader's sources,
+   hidden checks included: students cannot read serverFilesCourse). Add the
    topic "${PL_TOPIC}" to \`infoCourse.json\` (\`"topics": [{"name": "${PL_TOPIC}", "color": "blue1", "description": "Scatterbook WGSL exercises"}]\`).
 3. Add the questions to an assessment, e.g. in \`infoAssessment.json\`:
    \`"zones": [{"questions": [${ids.map((id) => `{"id": "scatterbook/${id}", "points": 10}`).join(', ')}]}]\`
@@ -183,7 +219,8 @@ export async function writePrairieLearnKit(options: PrairieLearnKitOptions): Pro
       externalGradingOptions: {
         enabled: true,
         image: options.image,
-        entrypoint: `${IMAGE_PROJECT}/entrypoint.sh ${id}`,
+        serverFilesCourse: [`${PROJECT_FOLDER}/`],
+        entrypoint: `/grade/serverFilesCourse/${PROJECT_FOLDER}/entrypoint.sh ${id}`,
         timeout,
       },
     };
@@ -195,16 +232,23 @@ export async function writePrairieLearnKit(options: PrairieLearnKitOptions): Pro
     );
   }
   const fallback = lastResortReport('prairielearn', 'unknown', 'Scatterbook exercise');
-  const copy = projectCopy(undefined, {});
+  const copy = projectCopy();
+  const installFiles = copy.files.filter(
+    (f) => f.path === 'package.json' || f.path === 'package-lock.json',
+  );
   files.push(
     text('grader-image/Dockerfile', dockerfile()),
-    text('grader-image/.dockerignore', `${PROJECT_FOLDER}/node_modules\n`),
+    ...installFiles.map((f) => ({ path: `grader-image/${f.path}`, data: f.data })),
+    text('.dockerignore', 'questions/\n**/node_modules\n'),
     text(
-      `grader-image/${PROJECT_FOLDER}/entrypoint.sh`,
+      `serverFilesCourse/${PROJECT_FOLDER}/entrypoint.sh`,
       entrypointScript(options, fallback),
       0o755,
     ),
-    ...copy.files.map((f) => ({ path: `grader-image/${PROJECT_FOLDER}/${f.path}`, data: f.data })),
+    ...copy.files.map((f) => ({
+      path: `serverFilesCourse/${PROJECT_FOLDER}/${f.path}`,
+      data: f.data,
+    })),
     text('README.md', courseReadme(options, EXERCISE_IDS)),
   );
   writeTree(options.out, files);
