@@ -281,7 +281,9 @@ describe('PrairieLearn questions', () => {
   });
 
   it('statements keep TeX for MathJax, escape HTML and cannot open a Mustache tag', () => {
-    const html = statementHtml('# Title\n\nInline $a<b_{x}$ and {{x}}\n\n$$\ne^{{-\\tau}}\n$$\n');
+    const html = statementHtml(
+      '# Title\n\nInline $a<b_{x}$ and {{x}} {{{y}}}\n\n$$\ne^{{-\\tau}}\n$$\n',
+    );
     expect(html).toContain('<h3>Title</h3>');
     expect(html).toContain('\\(a&lt;b_{x}\\)');
     expect(html).toContain('\\[');

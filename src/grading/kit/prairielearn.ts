@@ -82,8 +82,8 @@ export function statementHtml(markdown: string): string {
       /<(\/?)h([1-6])\b/g,
       (_all, slash: string, level: string) => `<${slash}h${Math.min(6, Number(level) + 2)}`,
     )
-    .replace(/\{\{/g, '{ {')
-    .replace(/\}\}/g, '} }');
+    .replace(/\{(?=\{)/g, '{ ')
+    .replace(/\}(?=\})/g, '} ');
 }
 
 function questionHtml(id: string, statement: string): string {
