@@ -40,10 +40,22 @@ async function createContext(): Promise<GpuContext> {
     const message = (event as GPUUncapturedErrorEvent).error.message;
     for (const listener of errorListeners) listener(message);
   });
+  return { device, adapterDescription: describeAdapter(adapter), hasTimestamps };
+}
+
+/**
+ * The adapter as the widgets name it in their cost line, "WebGPU (…)". Firefox leaves
+ * vendor, architecture and description empty, and calls a CPU Vulkan driver such as
+ * lavapipe a fallback adapter: the figures are right but slow there, so say so.
+ */
+export function describeAdapter(adapter: GPUAdapter): string {
   const info = adapter.info;
-  const adapterDescription =
-    [info.vendor, info.architecture, info.description].filter(Boolean).join(' ') || 'WebGPU';
-  return { device, adapterDescription, hasTimestamps };
+  const name = [info.vendor, info.architecture, info.description].filter(Boolean).join(' ');
+  // `isFallbackAdapter` moved from the adapter to its info; older browsers have the former.
+  const legacy = (adapter as GPUAdapter & { isFallbackAdapter?: boolean }).isFallbackAdapter;
+  const fallback = (info.isFallbackAdapter as boolean | undefined) ?? legacy ?? false;
+  if (fallback) return name ? `${name}, a software fallback adapter` : 'software fallback adapter';
+  return name || 'adapter unnamed by the browser';
 }
 
 /** The page's shared device; rejects with GpuUnavailableError when there is none. */

@@ -21,6 +21,19 @@ function escapeHtml(text: string): string {
     .replace(/"/g, '&quot;');
 }
 
+/**
+ * Keeps the MathML (KaTeX's accessible copy of each formula) out of layout until the
+ * HTML parser is done: Firefox lays a long page out while it is still arriving, and
+ * an <msub> or <mfrac> cut off at the end of a network chunk has too few children
+ * for that moment, which it logs as "Invalid markup: Incorrect number of children".
+ * book.css hides `.sb-parsing .katex-mathml math`; DOMContentLoaded shows it. Without
+ * JavaScript the class is never set and the MathML is there from the start.
+ */
+const PARSING_SCRIPT =
+  '<script>document.documentElement.classList.add("sb-parsing");' +
+  'document.addEventListener("DOMContentLoaded",function(){' +
+  'document.documentElement.classList.remove("sb-parsing")})</script>';
+
 function shell(title: string, description: string, body: string, htmlClass = ''): string {
   return `<!doctype html>
 <html lang="en"${htmlClass ? ` class="${htmlClass}"` : ''}>
@@ -31,6 +44,7 @@ function shell(title: string, description: string, body: string, htmlClass = '')
 <title>${escapeHtml(title)}</title>
 <link rel="icon" href="/favicon.svg" type="image/svg+xml">
 <link rel="stylesheet" href="/src/book/styles/book.css">
+${PARSING_SCRIPT}
 <script type="module" src="/src/book/main.ts"></script>
 </head>
 <body>
