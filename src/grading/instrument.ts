@@ -36,10 +36,10 @@ export const MAX_SUBMISSION_BYTES = 64 * 1024;
 /** What a submission may contain, in the words the page and the README use. */
 export const SUBMISSION_RULES =
   `One WGSL file of at most ${MAX_SUBMISSION_BYTES / 1024} KiB: your function and whatever it ` +
-  'needs (other functions, structs, module-scope `const` and `var<private>`), with no ' +
-  'bindings (`@group`/`@binding`), entry points, `enable`/`requires`/`diagnostic` ' +
-  'directives, `override` declarations or names starting with `sbg_`; the grader refuses ' +
-  'those before compiling.';
+  'needs (other functions, structs, module-scope const and var<private>), with no ' +
+  'bindings (@group, @binding), entry points (@compute, @vertex, @fragment), ' +
+  'enable/requires/diagnostic directives, override declarations or names starting with ' +
+  `${RESERVED_PREFIX}; the grader refuses those before compiling.`;
 
 /** Bytes of `text` in UTF-8 (lone surrogates count 3, as TextEncoder writes U+FFFD). */
 export function utf8Length(text: string): number {
