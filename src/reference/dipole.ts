@@ -8,19 +8,24 @@
 // its two sources (float64 keeps enough digits for the radii the tests use, and the
 // tests check the shader's stable form against it), its total takes the α' = 1 limit
 // 4AD by a branch instead of a stable quotient, and the Fresnel moments come from the
-// adaptive quadrature of src/reference/fresnel.ts. The clamps and the degenerate-input
-// conventions (no medium, α' = 0) are shared, because the tests compare the two there.
+// adaptive quadrature of src/reference/fresnel.ts. The domain conventions (no medium,
+// α' = 0, the σt' range, saturation of profile values at the largest f32) are shared,
+// because the tests compare the two there.
+//
+// Units do not matter (σ → kσ, r → r/k: α', A and totals unchanged, profiles × k²), so no
+// coefficient or length is clamped on its own; float64 forms the squares and cubes
+// directly for any f32 inputs.
 import { fresnelMoment } from './fresnel.ts';
+import { F32_MAX } from './transmittance.ts';
 
-/** Same clamps as the shader (see the constants of shaders/dipole.wesl). */
-export const DIPOLE_MAX_COEFFICIENT = 1e9;
-export const DIPOLE_MIN_EXTINCTION = 1e-9;
-export const DIPOLE_MAX_RADIUS = 1e15;
+/** Same conventions as the shader (see the constants of shaders/dipole.wesl). */
+export const DIPOLE_MIN_EXTINCTION = 2 ** -120;
+export const DIPOLE_MAX_EXTINCTION = 2 ** 120;
 export const DIPOLE_FIT_MIN_ETA = 0.5;
 export const DIPOLE_FIT_MAX_ETA = 2.5;
-export const BURLEY_MIN_LENGTH = 1e-9;
-export const BURLEY_MAX_LENGTH = 1e9;
 export const BURLEY_MIN_RADIUS_FRACTION = 1e-6;
+/** A Burley shape length below the smallest normal f32 is no spread. */
+const BURLEY_MIN_SHAPE_LENGTH = 2 ** -126;
 
 /** Same fields as the WGSL struct DipoleParameters. */
 export interface DipoleParameters {
@@ -44,7 +49,22 @@ export interface BetterDipoleParameters {
 }
 
 const clamp = (x: number, lo: number, hi: number): number => Math.min(Math.max(x, lo), hi);
-const clampCoefficient = (x: number): number => clamp(x, 0, DIPOLE_MAX_COEFFICIENT);
+const nonNegative = (x: number): number => (x > 0 ? x : 0);
+const capF32 = (x: number): number => Math.min(x, F32_MAX);
+
+/**
+ * σs' and σa (negative counting as 0) as the shader's domain sees them: null when σt' is
+ * below DIPOLE_MIN_EXTINCTION (no medium), and both scaled by one factor when σt' exceeds
+ * DIPOLE_MAX_EXTINCTION (a change of units, which keeps α').
+ */
+function dipoleCoefficients(sigmaSPrime: number, sigmaA: number): [number, number] | null {
+  const sp = nonNegative(sigmaSPrime);
+  const sa = nonNegative(sigmaA);
+  const st = sp + sa;
+  if (!(st >= DIPOLE_MIN_EXTINCTION)) return null;
+  const scale = st > DIPOLE_MAX_EXTINCTION ? DIPOLE_MAX_EXTINCTION / st : 1;
+  return [sp * scale, sa * scale];
+}
 
 /** Jensen et al. 2001 fit for η ≥ 1, pbrt-v2's external-side fit for η < 1 (physics.md §6.1, §9 row 23). */
 export function fresnelDiffuseReflectanceFit(eta: number): number {
@@ -65,12 +85,12 @@ export function dipoleParameters(
   sigmaA: number,
   eta: number,
 ): DipoleParameters {
-  const sp = clampCoefficient(sigmaSPrime);
-  const sa = clampCoefficient(sigmaA);
   const boundaryA = dipoleBoundary(eta);
-  const sigmaTPrime = sp + sa;
-  if (sigmaTPrime < DIPOLE_MIN_EXTINCTION)
+  const coefficients = dipoleCoefficients(sigmaSPrime, sigmaA);
+  if (coefficients === null)
     return { albedoPrime: 0, sigmaTPrime: 0, sigmaTr: 0, zr: 0, zv: 0, boundaryA };
+  const [sp, sa] = coefficients;
+  const sigmaTPrime = sp + sa;
   const zr = 1 / sigmaTPrime;
   return {
     albedoPrime: sp / sigmaTPrime,
@@ -83,19 +103,28 @@ export function dipoleParameters(
   };
 }
 
-/** z(1 + σd)e^{−σd}/d³ with d = √(r² + z²). */
+/** √(r² + z²), capped at the largest f32 (float64 forms the squares without overflow). */
+export function dipoleDistance(r: number, z: number): number {
+  return capF32(Math.hypot(r, z));
+}
+
+/** z(1 + σd)e^{−σd}/d³ with d = √(r² + z²); 0 for z ≤ 0; capped at the largest f32. */
 export function dipoleSourceTerm(z: number, sigma: number, r: number): number {
+  if (!(z > 0)) return 0;
   const d = Math.hypot(r, z);
-  return (z * (1 + sigma * d) * Math.exp(-sigma * d)) / d ** 3;
+  const sd = nonNegative(sigma) * d;
+  // e^{−σd} is 0 long before 1 + σd matters; skip the product there (∞·0 for huge σd).
+  const attenuation = sd > 800 ? 0 : (1 + sd) * Math.exp(-sd);
+  return capF32((z * attenuation) / d ** 3);
 }
 
 /** R_d(r) of the classic dipole (physics.md §6.1), in 1/L². */
 export function dipoleProfile(p: DipoleParameters, r: number): number {
   if (p.albedoPrime <= 0 || p.zr <= 0) return 0;
-  const radius = Math.min(Math.abs(r), DIPOLE_MAX_RADIUS);
+  const radius = Math.abs(r);
   return (
     (p.albedoPrime / (4 * Math.PI)) *
-    (dipoleSourceTerm(p.zr, p.sigmaTr, radius) + dipoleSourceTerm(p.zv, p.sigmaTr, radius))
+    capF32(dipoleSourceTerm(p.zr, p.sigmaTr, radius) + dipoleSourceTerm(p.zv, p.sigmaTr, radius))
   );
 }
 
@@ -115,7 +144,7 @@ export function dipoleTotalReflectance(p: DipoleParameters): number {
 /** ∫_R^∞ R_d 2πr dr = (α'/2)Σ z e^{−σtr d(R)}/d(R) over both sources. */
 export function dipoleReflectanceBeyond(p: DipoleParameters, radius: number): number {
   if (p.albedoPrime <= 0 || p.zr <= 0) return 0;
-  const r = Math.min(Math.abs(radius), DIPOLE_MAX_RADIUS);
+  const r = Math.abs(radius);
   const tail = (z: number): number => {
     const d = Math.hypot(r, z);
     return (z / d) * Math.exp(-p.sigmaTr * d);
@@ -139,15 +168,15 @@ export function betterDipoleParameters(
   sigmaA: number,
   eta: number,
 ): BetterDipoleParameters {
-  const sp = clampCoefficient(sigmaSPrime);
-  const sa = clampCoefficient(sigmaA);
   const c1 = fresnelMoment(eta, 1);
   const c2 = fresnelMoment(eta, 2);
   const cPhi = (1 - 2 * c1) / 4;
   const cE = (1 - 3 * c2) / 2;
-  const st = sp + sa;
-  if (st < DIPOLE_MIN_EXTINCTION)
+  const coefficients = dipoleCoefficients(sigmaSPrime, sigmaA);
+  if (coefficients === null)
     return { albedoPrime: 0, sigmaTr: 0, diffusion: 0, zr: 0, zv: 0, cPhi, cE };
+  const [sp, sa] = coefficients;
+  const st = sp + sa;
   const boundaryA = (1 + 3 * c2) / (1 - 2 * c1);
   const diffusion = (2 * sa + sp) / (3 * st * st);
   const zr = 1 / st;
@@ -166,7 +195,7 @@ export function betterDipoleParameters(
 /** R(r) of the better dipole (physics.md §6.2), in 1/L², in the form printed there. */
 export function betterDipoleProfile(p: BetterDipoleParameters, r: number): number {
   if (p.albedoPrime <= 0 || p.zr <= 0) return 0;
-  const radius = Math.min(Math.abs(r), DIPOLE_MAX_RADIUS);
+  const radius = Math.abs(r);
   const dr = Math.hypot(radius, p.zr);
   const dv = Math.hypot(radius, p.zv);
   const s = p.sigmaTr;
@@ -174,7 +203,7 @@ export function betterDipoleProfile(p: BetterDipoleParameters, r: number): numbe
     ((p.cE * p.zr * (1 + s * dr)) / dr ** 2 + p.cPhi / p.diffusion) * (Math.exp(-s * dr) / dr);
   const image =
     ((p.cE * p.zv * (1 + s * dv)) / dv ** 2 + p.cPhi / p.diffusion) * (Math.exp(-s * dv) / dv);
-  return ((p.albedoPrime * p.albedoPrime) / (4 * Math.PI)) * (real - image);
+  return ((p.albedoPrime * p.albedoPrime) / (4 * Math.PI)) * capF32(real - image);
 }
 
 /** Total of the better dipole (physics.md §6.2 [der]); at σtr = 0 the quotient is its limit 4AD. */
@@ -208,29 +237,31 @@ export function burleyShapeDmfp(albedo: number): number {
   return 3.5 + 100 * (a - 0.33) ** 4;
 }
 
-/** A(e^{−r/d} + e^{−r/(3d)})/(8πdr), r raised to 1e-6·d (physics.md §6.3, §9 row 19). */
+/**
+ * A(e^{−r/d} + e^{−r/(3d)})/(8πdr), r raised to 1e-6·d (physics.md §6.3, §9 row 19); 0 for
+ * d below the smallest normal f32 (no spread); capped at the largest f32.
+ */
 export function burleyProfile(albedo: number, d: number, r: number): number {
   const a = clamp(albedo, 0, 1);
-  const length = clamp(d, BURLEY_MIN_LENGTH, BURLEY_MAX_LENGTH);
-  const radius = clamp(Math.abs(r), BURLEY_MIN_RADIUS_FRACTION * length, DIPOLE_MAX_RADIUS);
-  return (
-    (a * (Math.exp(-radius / length) + Math.exp(-radius / (3 * length)))) /
-    (8 * Math.PI * length * radius)
+  if (!(d >= BURLEY_MIN_SHAPE_LENGTH)) return 0;
+  const radius = Math.max(Math.abs(r), BURLEY_MIN_RADIUS_FRACTION * d);
+  return capF32(
+    (a * (Math.exp(-radius / d) + Math.exp(-radius / (3 * d)))) / (8 * Math.PI * d * radius),
   );
 }
 
-/** 2πr·R(r) = A(e^{−r/d} + e^{−r/(3d)})/(4d), finite at r = 0. */
+/** 2πr·R(r) = A(e^{−r/d} + e^{−r/(3d)})/(4d), finite at r = 0; 0 without spread. */
 export function burleyRadialDensity(albedo: number, d: number, r: number): number {
   const a = clamp(albedo, 0, 1);
-  const length = clamp(d, BURLEY_MIN_LENGTH, BURLEY_MAX_LENGTH);
-  const radius = Math.min(Math.abs(r), DIPOLE_MAX_RADIUS);
-  return (a * (Math.exp(-radius / length) + Math.exp(-radius / (3 * length)))) / (4 * length);
+  if (!(d >= BURLEY_MIN_SHAPE_LENGTH)) return 0;
+  const radius = Math.abs(r);
+  return capF32((a * (Math.exp(-radius / d) + Math.exp(-radius / (3 * d)))) / (4 * d));
 }
 
-/** 1 − ¼e^{−r/d} − ¾e^{−r/(3d)} (physics.md §6.3). */
+/** 1 − ¼e^{−r/d} − ¾e^{−r/(3d)} (physics.md §6.3); 1 without spread (d ≤ 0). */
 export function burleyRadialCdf(r: number, d: number): number {
-  const length = clamp(d, BURLEY_MIN_LENGTH, BURLEY_MAX_LENGTH);
-  const x = Math.min(Math.abs(r), DIPOLE_MAX_RADIUS) / length;
+  if (!(d >= BURLEY_MIN_SHAPE_LENGTH)) return 1;
+  const x = Math.abs(r) / d;
   // 1 − ¼e^{−x} − ¾e^{−x/3} = −¼expm1(−x) − ¾expm1(−x/3): no cancellation near 0.
   return -0.25 * Math.expm1(-x) - 0.75 * Math.expm1(-x / 3);
 }

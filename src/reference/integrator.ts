@@ -48,7 +48,7 @@ import {
   type Surface,
 } from './surfaces.ts';
 import { TRACKING_MAX_STEPS, sampleFreeFlight } from './tracking.ts';
-import { transmittanceHomogeneous } from './transmittance.ts';
+import { F32_MAX, transmittanceHomogeneous } from './transmittance.ts';
 
 export const SCENE_MAX_MEDIA = 4;
 export const SCENE_MAX_LIGHTS = 8;
@@ -355,7 +355,7 @@ export function segmentWalk(
       points.transmittance[i] = transmittanceBeer(sigmaT, points.t[i]! - segment[0]);
     walk.transmittance = transmittanceBeer(sigmaT, length);
     if (emit) walk.emitted = emissionClosedForm(medium, length);
-    if (scatter) {
+    if (scatter && length >= TRUNCATED_EXPONENTIAL_MIN_LENGTH) {
       const rate = averageComponent(sigmaT);
       const s = sampleTruncatedExponential(rate, length, rngNextFloat(state));
       walk.scatterT = segment[0] + s;
@@ -632,18 +632,30 @@ export function vertexScatterWeight(vertex: Vertex): Rgb {
   return vertex.kind === VERTEX_SURFACE ? clampRgb(vertex.albedo as Rgb) : [1, 1, 1];
 }
 
-/** Inverse CDF of the truncated exponential: s = −ln(1 − u(1 − e^{−kL}))/k. */
+/** Segments shorter than the smallest normal f32 are empty (the GPU may flush them to 0). */
+export const TRUNCATED_EXPONENTIAL_MIN_LENGTH = 2 ** -126;
+
+/**
+ * Inverse CDF of the truncated exponential: s = −ln(1 − u(1 − e^{−kL}))/k, with u clamped
+ * to [0, 1 − 2^-24] as in the shader; an empty segment (L < 2^-126, also L ≤ 0) gives 0.
+ */
 export function sampleTruncatedExponential(rate: number, length: number, u: number): number {
+  if (!(length >= TRUNCATED_EXPONENTIAL_MIN_LENGTH)) return 0;
   const k = Math.max(rate, 0);
-  if (k * length === 0) return Math.min(Math.max(u * length, 0), length);
-  return Math.min(Math.max(-Math.log1p(u * Math.expm1(-k * length)) / k, 0), length);
+  const xi = Math.min(Math.max(u, 0), 1 - 2 ** -24);
+  if (k === 0) return xi * length;
+  return Math.min(Math.max(-Math.log1p(xi * Math.expm1(-k * length)) / k, 0), length);
 }
 
-/** k e^{−ks}/(1 − e^{−kL}); the uniform 1/L when kL = 0. */
+/**
+ * k e^{−ks}/(1 − e^{−kL}) on [0, L], the uniform 1/L when k = 0, 0 outside the support
+ * (L ≤ 0, s < 0, s > L); capped at the largest f32 like the shader's saturating division.
+ */
 export function truncatedExponentialPdf(rate: number, length: number, s: number): number {
+  if (!(length >= TRUNCATED_EXPONENTIAL_MIN_LENGTH) || s < 0 || s > length) return 0;
   const k = Math.max(rate, 0);
-  if (k * length === 0) return 1 / length;
-  return (k * Math.exp(-k * s)) / -Math.expm1(-k * length);
+  const density = k === 0 ? 1 / length : (k * Math.exp(-k * s)) / -Math.expm1(-k * length);
+  return Math.min(density, F32_MAX);
 }
 
 export function mediumEmits(scene: SceneData, medium: SceneMedium): boolean {

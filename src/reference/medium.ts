@@ -7,6 +7,7 @@ import {
   opticalThicknessGrid1D,
   opticalThicknessHomogeneous,
   opticalThicknessSine,
+  saturatingProduct,
 } from './transmittance.ts';
 import { planeCrossing, rayBoxSegment } from './geometry.ts';
 
@@ -75,8 +76,11 @@ export function mediumExtinction(medium: Medium1D, s: number): number {
   switch (medium.kind) {
     case MEDIUM_SINE: {
       const a = Math.min(Math.max(medium.amplitude, 0), 1);
-      const sigma = Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT);
-      return Math.max(sigma * (1 + a * Math.sin(medium.frequency * s + medium.phase)), 0);
+      // No coefficient clamp (units do not matter); the value is capped at the largest f32.
+      return saturatingProduct(
+        medium.sigma0,
+        1 + a * Math.sin(medium.frequency * s + medium.phase),
+      );
     }
     case MEDIUM_GRID: {
       const count = Math.min(medium.cellCount, GRID1D_MAX_CELLS);
@@ -85,7 +89,7 @@ export function mediumExtinction(medium: Medium1D, s: number): number {
       return Math.max(medium.cells[index] ?? 0, 0);
     }
     default:
-      return Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT);
+      return Math.max(medium.sigma0, 0);
   }
 }
 
@@ -110,10 +114,7 @@ export function mediumOpticalDepth(medium: Medium1D, s0: number, s1: number): nu
 export function mediumMajorant(medium: Medium1D, s0: number, s1: number): number {
   switch (medium.kind) {
     case MEDIUM_SINE:
-      return (
-        Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT) *
-        (1 + Math.min(Math.max(medium.amplitude, 0), 1))
-      );
+      return saturatingProduct(medium.sigma0, 1 + Math.min(Math.max(medium.amplitude, 0), 1));
     case MEDIUM_GRID: {
       if (medium.cellSize <= 0) return 0;
       let majorant = 0;
@@ -125,14 +126,14 @@ export function mediumMajorant(medium: Medium1D, s0: number, s1: number): number
       return majorant;
     }
     default:
-      return Math.min(Math.max(medium.sigma0, 0), FINITE_LIMIT);
+      return Math.max(medium.sigma0, 0);
   }
 }
 
 // ---------------------------------------------------------------------------
 // 3D density grids: twin of the DensityGrid functions of shaders/medium.wesl, with
 // the same conventions (cell-centred samples, clamp-to-edge, 0 outside the closed
-// box, densities and densityScale clamped to [0, 1e18]). The WGSL `texture_3d<f32>`
+// box, densities clamped to [0, 1e18], σt = densityScale·ρ capped at the largest f32). The WGSL `texture_3d<f32>`
 // of samples is a Float32Array here, x fastest: sample (i, j, k) is
 // volume[i + nx·(j + ny·k)].
 // Written from the definitions: the trilinear value is a weighted sum over the eight
@@ -166,9 +167,10 @@ export const GRID_DDA_MAX_CELLS = 256;
 const AXES = [0, 1, 2] as const;
 const clampBetween = (x: number, lo: number, hi: number): number => Math.min(Math.max(x, lo), hi);
 /**
- * Densities and densityScale are clamped to f32(1e18), the value of the WGSL
- * FINITE_LIMIT: the majorant grid stores clamped samples as f32, and must still bound
- * the density.
+ * Densities are clamped to f32(1e18), the value of the WGSL FINITE_LIMIT: the majorant
+ * grid stores clamped samples as f32, and must still bound the density. densityScale
+ * (1/m) is not clamped (a bound on a coefficient is a unit of length); σt = scale·ρ is
+ * capped at the largest f32, as in the shader.
  */
 const DENSITY_LIMIT = Math.fround(FINITE_LIMIT);
 const clampDensity = (x: number): number => clampBetween(x, 0, DENSITY_LIMIT);
@@ -266,7 +268,7 @@ export function gridDensityTrilinear(grid: DensityGrid, volume: Float32Array, p:
   }
   // A convex combination cannot exceed its largest term; the clamp removes the
   // float64 rounding of the sum so that majorants bound the result exactly.
-  return clampDensity(grid.densityScale) * Math.min(sum, largest);
+  return saturatingProduct(grid.densityScale, Math.min(sum, largest));
 }
 
 export function gridCellIndex(grid: DensityGrid, p: Vec3): Vec3 {
@@ -285,9 +287,9 @@ export function gridMajorantLookup(
   p: Vec3,
 ): number {
   if (!gridHasVolume(majorantGrid) || !insideClosedBox(majorantGrid, p)) return 0;
-  return (
-    clampDensity(majorantGrid.densityScale) *
-    gridSample(majorantGrid, majorantVolume, gridCellIndex(majorantGrid, p))
+  return saturatingProduct(
+    majorantGrid.densityScale,
+    gridSample(majorantGrid, majorantVolume, gridCellIndex(majorantGrid, p)),
   );
 }
 
@@ -420,7 +422,7 @@ export function gridMajorantAlongRay(
   const visited = cells.slice(0, GRID_DDA_MAX_CELLS);
   const largest = Math.max(0, ...visited.map((c) => gridSample(majorantGrid, majorantVolume, c)));
   return {
-    majorant: clampDensity(majorantGrid.densityScale) * largest,
+    majorant: saturatingProduct(majorantGrid.densityScale, largest),
     cellsVisited: visited.length,
     capped: cells.length > GRID_DDA_MAX_CELLS ? 1 : 0,
   };
@@ -436,6 +438,6 @@ export function gridOpticalDepthConstant(
 ): number {
   const [t0, t1] = gridSegmentInBounds(grid, origin, direction, tMin, tMax);
   if (t1 <= t0) return 0;
-  const sigmaT = clampDensity(grid.densityScale) * gridSample(grid, volume, [0, 0, 0]);
+  const sigmaT = saturatingProduct(grid.densityScale, gridSample(grid, volume, [0, 0, 0]));
   return opticalThicknessHomogeneous(sigmaT, (t1 - t0) * Math.hypot(...direction));
 }

@@ -61,7 +61,8 @@ export function directionAroundAxis(
   sinTheta: number,
   uPhi: number,
 ): Vec3 {
-  const phi = Math.PI * (2 * uPhi - 1);
+  // u outside [0, 1] is clamped (the shader's φ would overflow).
+  const phi = Math.PI * (2 * clamp(uPhi, 0, 1) - 1);
   const { tangent, bitangent } = orthonormalBasis(axis);
   const c = sinTheta * Math.cos(phi);
   const s = sinTheta * Math.sin(phi);
@@ -72,11 +73,11 @@ export function directionAroundAxis(
   ];
 }
 
-/** z = 1 − 2u.x is uniform on [−1, 1] (Archimedes), φ = π(2u.y − 1). */
+/** z = 1 − 2u.x is uniform on [−1, 1] (Archimedes), φ = π(2u.y − 1); u clamped to [0, 1]². */
 export function sampleUniformSphere(u: readonly [number, number]): Vec3 {
   const z = 1 - 2 * clamp(u[0], 0, 1);
   const r = Math.sqrt(Math.max(0, 1 - z * z));
-  const phi = Math.PI * (2 * u[1] - 1);
+  const phi = Math.PI * (2 * clamp(u[1], 0, 1) - 1);
   return [r * Math.cos(phi), r * Math.sin(phi), z];
 }
 

@@ -6,7 +6,7 @@
 // from Math.expm1 (no series needed in float64).
 import { type Medium1D, mediumExtinction, mediumOpticalDepth } from './medium.ts';
 import { type RngState, rngNextFloat } from './rng.ts';
-import { FINITE_LIMIT } from './transmittance.ts';
+import { F32_MAX, FINITE_LIMIT } from './transmittance.ts';
 
 export const MARCH_LEFT = 0;
 export const MARCH_MIDPOINT = 1;
@@ -61,11 +61,14 @@ export function marchStepOffset(scheme: number, rayOffset: number, state: RngSta
   return scheme === MARCH_JITTERED_STRATA ? rngNextFloat(state) : rayOffset;
 }
 
+/**
+ * clamp(e0 + e1·t, 0, 1e18) with e0 (a radiance) clamped to ±1e18 and t < 0 counting as 0.
+ * The slope e1 (per m) and t (m) are never clamped on their own, so L_e is the same in any
+ * unit of length; float64 forms e1·t without overflow for any f32 inputs.
+ */
 export function linearEmission(emission0: number, emissionSlope: number, t: number): number {
-  const value =
-    clamp(emission0, -FINITE_LIMIT, FINITE_LIMIT) +
-    clamp(emissionSlope, -FINITE_LIMIT, FINITE_LIMIT) * clamp(t, 0, FINITE_LIMIT);
-  return clamp(value, 0, FINITE_LIMIT);
+  const growth = emissionSlope === 0 ? 0 : emissionSlope * Math.max(t, 0);
+  return clamp(clamp(emission0, -FINITE_LIMIT, FINITE_LIMIT) + growth, 0, FINITE_LIMIT);
 }
 
 /** The n sample positions t_i = (i + u_i)·h of a march, drawing ξ in the shader's order. */
@@ -77,7 +80,7 @@ function samplePositions(n: number, h: number, scheme: number, state: RngState):
 interface MarchSetup {
   n: number;
   positions: number[];
-  /** σt·h at each sample, σt capped as in the shader. */
+  /** σt·h at each sample (no factor clamped: units do not matter). */
   opticalSteps: number[];
 }
 
@@ -89,11 +92,9 @@ function setUpMarch(
   state: RngState,
 ): MarchSetup {
   const n = marchStepCount(steps);
-  const h = clamp(d, 0, FINITE_LIMIT) / n;
+  const h = Math.max(d, 0) / n;
   const positions = samplePositions(n, h, scheme, state);
-  const opticalSteps = positions.map(
-    (t) => Math.min(mediumExtinction(medium, t), FINITE_LIMIT) * h,
-  );
+  const opticalSteps = positions.map((t) => mediumExtinction(medium, t) * h);
   return { n, positions, opticalSteps };
 }
 
@@ -173,7 +174,11 @@ export function raymarchOpticalDepth(
   scheme: number,
   state: RngState,
 ): number {
-  return setUpMarch(medium, d, steps, scheme, state).opticalSteps.reduce((a, b) => a + b, 0);
+  // Capped at the largest f32, the shader's saturation value.
+  return Math.min(
+    setUpMarch(medium, d, steps, scheme, state).opticalSteps.reduce((a, b) => a + b, 0),
+    F32_MAX,
+  );
 }
 
 export function raymarchEmissionRiemann(
@@ -188,7 +193,7 @@ export function raymarchEmissionRiemann(
   state: RngState,
 ): MarchResult {
   const n = marchStepCount(steps);
-  const length = clamp(d, 0, FINITE_LIMIT);
+  const length = Math.max(d, 0);
   const h = length / n;
   const absorbedFraction = 1 - clamp(albedo, 0, 1);
   // τ(0, t_i) accumulated segment by segment (the shader calls τ(0, t_i) directly).
@@ -198,7 +203,7 @@ export function raymarchEmissionRiemann(
   for (const t of samplePositions(n, h, scheme, state)) {
     opticalDepth += mediumOpticalDepth(medium, previous, t);
     previous = t;
-    const sigmaA = absorbedFraction * Math.min(mediumExtinction(medium, t), FINITE_LIMIT);
+    const sigmaA = absorbedFraction * mediumExtinction(medium, t);
     const weight = Math.min(Math.exp(-opticalDepth) * sigmaA * h, FINITE_LIMIT);
     radiance = Math.min(
       radiance + weight * linearEmission(emission0, emissionSlope, t),

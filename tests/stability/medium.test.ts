@@ -38,16 +38,19 @@ const ONE = makeDensityGrid([2], [1, 1, 1], [0, 0, 0], [1, 1, 1], 0.5);
 const ZERO = makeDensityGrid(cube(3, 0), [3, 3, 3], [0, 0, 0], [1, 1, 1], 4);
 /** Zero-size bounds: boundsMin.y = boundsMax.y, so the box has no volume. */
 const FLAT = makeDensityGrid(cube(2, 1), [2, 2, 2], [0, 0, 0], [1, 0, 1], 1);
-/** densityScale = f32 max and ρ = 1e30: both are clamped to 1e18, so σt = 1e36 stays finite. */
-const HUGE = makeDensityGrid(cube(2, 1e30), [2, 2, 2], [0, 0, 0], [1, 1, 1], F32_MAX);
+/**
+ * densityScale = 1e20 /m and ρ = 1e30: the density (dimensionless) is clamped to 1e18, the
+ * coefficient is not (a bound on it would be a unit of length, issue 20), so σt = 1e38.
+ */
+const HUGE = makeDensityGrid(cube(2, 1e30), [2, 2, 2], [0, 0, 0], [1, 1, 1], 1e20);
 /** Negative samples and densityScale are not physical: clamped to σt = 0. */
 const NEGATIVE = makeDensityGrid(cube(2, -1), [2, 2, 2], [0, 0, 0], [1, 1, 1], -2);
 /** A row of four majorant cells with values 1, 2, 3, 4 along x in [0, 4]×[0, 1]². */
 const ROW = makeDensityGrid([1, 2, 3, 4], [4, 1, 1], [0, 0, 0], [4, 1, 1], 1);
 
 /**
- * Expected values here are exact or 1e36 = 1e18·1e18, which the GPU computes from
- * f32(1e18) = 1e18·(1 − 1.6e-8): 2e-7 relative covers that and one or two f32 roundings.
+ * Expected values here are exact or 1e38 = 1e20·1e18, which the GPU computes from
+ * f32(1e20)·f32(1e18) (each within 1.6e-8): 2e-7 relative covers that and one or two f32 roundings.
  */
 const CLOSE_RELATIVE = 2e-7;
 
@@ -78,10 +81,10 @@ describe('gridDensityTrilinear and gridMajorantLookup on degenerate grids (both 
       expected: 0,
     },
     {
-      name: 'huge densityScale and ρ: clamped to 1e18 each',
+      name: 'huge densityScale and ρ: ρ clamped to 1e18, densityScale 1e20 not clamped',
       grid: HUGE,
       p: [0.3, 0.6, 0.9],
-      expected: 1e36,
+      expected: 1e38,
     },
     {
       name: 'negative densityScale and ρ: σt = 0',
@@ -259,9 +262,9 @@ describe('gridMajorantAlongRay: axis-parallel rays, rays on faces, misses, empty
     expect(twinMajorantAlongRay(flat, r)).toEqual(result(0, 0));
     expect(gZero).toEqual(result(0, 3));
     expect(twinMajorantAlongRay(zero, r)).toEqual(result(0, 3));
-    expect(close(gHuge?.majorant ?? NaN, 1e36)).toBe(true);
+    expect(close(gHuge?.majorant ?? NaN, 1e38)).toBe(true);
     const twinHuge = twinMajorantAlongRay(huge, r);
-    expect(close(twinHuge.majorant, 1e36)).toBe(true);
+    expect(close(twinHuge.majorant, 1e38)).toBe(true);
   });
 });
 
@@ -337,10 +340,10 @@ describe('gridOpticalDepthConstant and gridSegmentInBounds: hard cases (both imp
       segment: [1, 2],
     },
     {
-      name: 'huge densityScale·ρ: τ clamped to 1e18 (σt) × chord 1',
+      name: 'huge densityScale·ρ: τ = 1e38 (σt) × chord 1',
       grid: HUGE,
       ray: ray([-1, 0.5, 0.5], [1, 0, 0], 0, 9),
-      tau: 1e18,
+      tau: 1e38,
       segment: [1, 2],
     },
     {

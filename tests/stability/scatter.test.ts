@@ -107,7 +107,16 @@ describeShaderFunction({
   cases: [
     { name: 'light on the ray (h = 0): 0, not Inf', args: [0, -1, 1, 0], expected: 0 },
     { name: 'empty segment θa = θb: 0, not Inf', args: [1, 0.2, 0.2, 0], expected: 0 },
-    { name: 'h·Δθ = 1e-31 < 1e-30: degenerate, 0', args: [1e-31, -1, 0, 0], expected: 0 },
+    {
+      name: 'h·Δθ = 1e-39 < 2^-126 (pdf past f32): degenerate, 0',
+      args: [1e-39, -1, 0, 0],
+      expected: 0,
+    },
+    {
+      name: 'h = 1e-31, Δθ = 1, t = 0: 1e31 (no length threshold, issue 20)',
+      args: [1e-31, -1, 0, 0],
+      expected: 1e31,
+    },
     { name: 'h = 1e-20, t = 0: 1/(h·Δθ) = 3.2e19, finite', args: [1e-20, -1.5, 1.5, 0] },
     { name: 't = f32 max: clamped to 1e36, tiny but finite', args: [1, -1, 1, F32_MAX] },
     { name: 'negative h is 0: pdf 0', args: [-1, -1, 1, 0], expected: 0 },
