@@ -113,8 +113,11 @@ export interface WrongExpectation {
   file: string;
   /** Expected outcome status, default 'graded'. */
   status?: GradeOutcome['status'];
-  /** Expected score range [min, max] (inclusive) when graded. */
-  score?: [number, number];
+  /**
+   * Expected score range [min, max] (inclusive) when graded, or 'full' for full marks
+   * whatever the exercise's total (e.g. a correct solution in an unusual encoding).
+   */
+  score?: [number, number] | 'full';
   reason: string;
 }
 

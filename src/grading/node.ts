@@ -7,6 +7,7 @@ import { fileURLToPath } from 'node:url';
 import { loadExercise } from '../../exercises/index.ts';
 import { HIDDEN_LOADERS } from '../../exercises/hiddenIndex.ts';
 import type { ExerciseDefinition, WrongExpectation } from './exercise.ts';
+import { decodeSubmission } from './instrument.ts';
 
 export const EXERCISES_DIR = resolve(dirname(fileURLToPath(import.meta.url)), '../../exercises');
 
@@ -38,5 +39,9 @@ export function wrongSubmissions(id: string): WrongSubmission[] {
     if (!expected.some((e) => e.file === file))
       throw new Error(`exercises/${id}/wrong/${file} has no entry in expected.json`);
   }
-  return expected.map((e) => ({ ...e, source: readFileSync(join(folder, e.file), 'utf8') }));
+  // Decoded as the grade command decodes a submission (UTF-8, or UTF-16 with its mark).
+  return expected.map((e) => ({
+    ...e,
+    source: decodeSubmission(readFileSync(join(folder, e.file))),
+  }));
 }

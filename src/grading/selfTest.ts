@@ -81,11 +81,15 @@ export async function runSelfTest(
       const matches = graded.outcomes.every((o) => {
         if (o.status !== status) return false;
         if (o.status !== 'graded' || !wrong.score) return true;
-        return o.score >= wrong.score[0] && o.score <= wrong.score[1];
+        const [min, max] = wrong.score === 'full' ? [o.maxScore, o.maxScore] : wrong.score;
+        return o.score >= min && o.score <= max;
       });
+      const range = wrong.score;
       const expected =
-        status === 'graded' && wrong.score
-          ? `expected ${wrong.score[0] === wrong.score[1] ? wrong.score[0] : wrong.score.join('–')} points`
+        status === 'graded' && range
+          ? range === 'full'
+            ? 'expected full marks'
+            : `expected ${range[0] === range[1] ? range[0] : range.join('–')} points`
           : `expected ${status}`;
       report({
         exercise: id,
