@@ -23,6 +23,7 @@ import {
 import { APPENDIX_FILE, APPENDIX_SUMMARY, APPENDIX_TITLE, renderAppendix } from './appendix.ts';
 import { loadShaderDocs } from './shaderDocs.ts';
 import { DECK, validateDeck } from './deck.ts';
+import { markRoot, relativizeLinks } from './links.ts';
 
 export interface BookPage {
   /** Path relative to the project root, e.g. `chapters/02-extinction-and-transmittance.html`. */
@@ -126,6 +127,10 @@ export function buildBook(root: string): Book {
     html: renderDeckPage(DECK, new Map(chapters.map((chapter) => [chapter.slug, chapter.title]))),
     widgets: [...new Set(DECK.map((slide) => slide.widget))],
   });
+  // Every page's links to other pages become relative to it (links.ts), so the site
+  // works under any base path.
+  for (const page of pages)
+    page.html = markRoot(relativizeLinks(page.html, page.file), page.file);
   return { chapters, pages, equations };
 }
 

@@ -48,6 +48,7 @@ import {
 } from './model.ts';
 import { PHOTON_MAP } from './schema.ts';
 import { summariseSweep } from './summary.ts';
+import { siteUrl } from '../base/siteUrl.ts';
 
 const READOUT_ROWS = [
   ['stored', 'Photons stored in the fog'],
@@ -177,7 +178,7 @@ export class PhotonMapElement extends WidgetElement {
 
   private loadReference(): Promise<PhotonReference> {
     this.reference ??= (async () => {
-      const response = await fetch(`${import.meta.env.BASE_URL}photon-map/reference.bin`);
+      const response = await fetch(siteUrl('photon-map/reference.bin'));
       if (!response.ok) throw new Error(`reference: HTTP ${response.status}`);
       return parseReference(await response.arrayBuffer());
     })();

@@ -49,6 +49,7 @@ import {
   type SingleScatterInputs,
 } from './model.ts';
 import { SINGLE_SCATTER } from './schema.ts';
+import { siteUrl } from '../base/siteUrl.ts';
 
 const READOUT_ROWS = [
   ['spp', 'Samples per pixel so far'],
@@ -304,7 +305,7 @@ export class SingleScatterElement extends WidgetElement {
     let resolved = this.resolvedCache.get(cacheKey);
     if (!resolved) {
       resolved = resolveScene(scene, async (path) => {
-        const response = await fetch(`${import.meta.env.BASE_URL}${path}`);
+        const response = await fetch(siteUrl(path));
         if (!response.ok) throw new Error(`HTTP ${response.status}`);
         return new Uint8Array(await response.arrayBuffer());
       });
