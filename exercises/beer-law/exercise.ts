@@ -22,8 +22,9 @@ fn transmittance(sigmaT: f32, d: f32) -> f32 {
     'For τ = 1e6, exp(−τ) is exactly 0 in f32; no special case is needed once τ ≥ 0.',
   ],
   gradingNotes:
-    'Each case passes when |T − T_ref| ≤ 1e-6 + 1e-5·|T_ref|. Public: τ from 0 to 10. ' +
-    'Hidden: zero thickness, τ = 1e6, σt = 1e6 over d = 1e-6, negative σt and d.',
+    'Each case passes when |T − T_ref| ≤ 1e-6 + 1e-5·|T_ref|. Public: τ from 0 to 10 at σt = 1/m ' +
+    'and three media. Hidden checks draw their cases from the grading seed: media of any ' +
+    'thickness and the hard cases of the chapter, each with ordinary partners.',
   subject: {
     name: 'transmittance',
     params: [

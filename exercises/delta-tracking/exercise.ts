@@ -1,7 +1,13 @@
-// Delta-tracking transmittance (chapter 6): the public part of the exercise,
-// graded by a z-test of the mean against exp(−τ) and of the variance against the
-// binary estimator's T(1 − T).
+// Delta-tracking transmittance (chapter 6): the public part of the exercise. The page
+// bundles this file, so it holds only what the statement shows: the public medium
+// σ0(1 + a sin 3s), the public case and its checks. The hidden media live in hidden.ts.
 import type { ExerciseDefinition, MonteCarloCheck } from '../../src/grading/exercise.ts';
+import {
+  trackingHelpers,
+  type MediumFamily,
+  type TrackingArgs,
+  type TrackingCheck,
+} from '../../src/grading/checks/tracking.ts';
 
 /** Exact optical depth of σt(s) = σ0 (1 + a sin(3 s)) over [0, d]: σ0 (d + a (1 − cos 3d)/3). */
 export function opticalDepth(sigma0: number, amplitude: number, d: number): number {
@@ -12,22 +18,27 @@ export function opticalDepth(sigma0: number, amplitude: number, d: number): numb
   return s0 * (dd + (a * (1 - Math.cos(3 * dd))) / 3);
 }
 
+/** The statement's medium behind extinction(), with its float64 twin. */
+export const SINE_MEDIUM: MediumFamily = {
+  id: 'sine',
+  parameters: [],
+  body: '  return sigma0 * (1.0 + amplitude * sin(3.0 * s));',
+  sigma: ([sigma0, a], _params, s) => sigma0 * (1 + a * Math.sin(3 * s)),
+  tau: ([sigma0, a], _params, s) => opticalDepth(sigma0, a, s),
+};
+
+/** Calls per public case, and the two-sided significance of each public z-test. */
+export const PUBLIC_CALLS = 65536;
+export const PUBLIC_ALPHA = 1e-6;
+
 /**
- * Statistical design. n = 65536 independent calls per case, two-sided α = 1e-6
- * (pass when |z| ≤ 4.89).
- * - Reference (a correct delta tracker, outputs Bernoulli(T)): the exact binomial
- *   probability of |z| > 4.89 is 1.0e-6 at the public case (T = 0.1552, by direct
- *   summation of the binomial pmf) and 1.3e-6 at the thick case (T = 0.0083,
- *   nT = 544, the upper tail slightly heavier than the normal's). For a binary
- *   estimator s² = m(1 − m)·n/(n − 1) is a function of the mean, so the variance test
- *   fails only together with the mean test. A seed therefore fails the reference
- *   with probability < 3e-6 over all checks; the self-test pins three seeds exactly.
- * - Power (z of each wrong submission in wrong/, mean ± spread from its own
- *   variance): exp of a one-sample optical depth, mean z = 54 ± 0.6 (public) and
- *   9.1 ± 0.11 (thick), variance z = −83 and −23; ignoring null collisions, mean
- *   z = −75 ± 0.9 (public) and −14 ± 0.6 (thick); ratio tracking, right mean but
- *   variance z = −59 (public) and −13 (thick). The closest call, the thick-case mean
- *   of the exp(−τ̂) submission, is 37 of its own spreads beyond the threshold.
+ * Statistical design of the public checks (T = 0.9077 at the public case, chosen near
+ * 0.9 so that n stays moderate). n = 2^16 calls, |z| ≤ 4.89 (α = 1e-6, normal
+ * approximation: the skewness of the sum, (1 − 2T)/√(nT(1 − T)) = −0.011, changes the
+ * tail by < 5 %). A relative bias of 1 % moves the mean's z by
+ * 0.01·√(nT/(1 − T)) = 8.03, so it fails with probability Φ(8.03 − 4.89) = 0.9992.
+ * For a binary estimator s² = m(1 − m)·n/(n − 1), so the variance test fails together
+ * with a biased mean; it is there for non-binary estimators (ratio tracking, e^{−τ̂}).
  */
 export function deltaTrackingCheck(
   kind: 'mean' | 'variance',
@@ -42,13 +53,29 @@ export function deltaTrackingCheck(
     points,
     message,
     args,
-    n: 65536,
+    n: PUBLIC_CALLS,
     expected: Math.exp(-opticalDepth(args[0], args[1], args[2])),
-    alpha: 1e-6,
+    alpha: PUBLIC_ALPHA,
   };
 }
 
-const PUBLIC_CASE = [1, 0.9, 1.5, 2] as const;
+export const PUBLIC_CASE = [0.1, 0.9, 0.6, 0.2] as const;
+
+/** Lookups and random numbers per estimate on the public case (see checks/tracking.ts). */
+export const PUBLIC_WORK_CHECK: TrackingCheck = {
+  kind: 'tracking',
+  name: 'Lookups and random numbers per estimate',
+  points: 1,
+  message:
+    'Your estimator does not use the medium as delta tracking does: one extinction() lookup ' +
+    'per tentative collision inside the segment (none for the step that leaves it), one ' +
+    'random number for each tentative distance and one for each real/null decision.',
+  family: SINE_MEDIUM,
+  cases: () => [{ args: PUBLIC_CASE as TrackingArgs, params: [] }],
+  n: 16384,
+  tests: { work: true },
+  alpha: PUBLIC_ALPHA,
+};
 
 export const EXERCISE: ExerciseDefinition = {
   id: 'delta-tracking',
@@ -70,11 +97,14 @@ fn deltaTracking(sigma0: f32, amplitude: f32, d: f32, sigmaMaj: f32, state: ptr<
     'loop { t += -log(1.0 - rngNextFloat(state)) / sigmaMaj; if (t >= d) { return 1.0; } ... }',
     'A collision is real with probability σt(t)/σ̄: compare rngNextFloat(state) * sigmaMaj with extinction(...).',
     'Return 0 or 1 only; do not return a weight or exp(−something): that is another estimator.',
+    'The grader counts your extinction() calls and random numbers: one lookup per tentative ' +
+      'collision inside [0, d], one random number per distance and one per real/null decision.',
   ],
   gradingNotes:
-    'n = 65536 calls; mean z-test against exp(−τ) and variance z-test against T(1 − T), ' +
-    'two-sided α = 1e-6 (|z| ≤ 4.89). Public: σ0 = 1, a = 0.9, d = 1.5, σ̄ = 2. Hidden: thick ' +
-    'segment, σ0 = 0, σ̄ = 0.',
+    'Public: n = 65536 calls at σ0 = 0.1, a = 0.9, d = 0.6, σ̄ = 0.2; mean z-test ' +
+    'against exp(−τ) and variance z-test against T(1 − T), two-sided α = 1e-6 (|z| ≤ 4.89), and ' +
+    'the extinction() lookups and random numbers per estimate. Hidden checks run the same tests ' +
+    'on media the statement does not show.',
   subject: {
     name: 'deltaTracking',
     params: [
@@ -86,15 +116,7 @@ fn deltaTracking(sigma0: f32, amplitude: f32, d: f32, sigmaMaj: f32, state: ptr<
     ],
     result: 'f32',
   },
-  helpers: {
-    imports: ['import package::rng::rngNextFloat;'],
-    wgsl: `fn extinction(sigma0: f32, amplitude: f32, s: f32) -> f32 {
-  return sigma0 * (1.0 + amplitude * sin(3.0 * s));
-}
-fn sbg_keepHelpers(state: ptr<function, u32>) -> f32 {
-  return rngNextFloat(state);
-}`,
-  },
+  helpers: trackingHelpers(SINE_MEDIUM),
   reference: `import package::tracking::sampleFreeFlight;
 fn deltaTracking(sigma0: f32, amplitude: f32, d: f32, sigmaMaj: f32, state: ptr<function, u32>) -> f32 {
   if (sigmaMaj <= 0.0) {
@@ -133,5 +155,6 @@ fn deltaTracking(sigma0: f32, amplitude: f32, d: f32, sigmaMaj: f32, state: ptr<
       'Your estimator does not have the variance T(1 − T) of delta tracking: it must return ' +
         'exactly 0 or 1 per call. Returning a weight (ratio tracking) or exp(−τ̂) is another estimator.',
     ),
+    PUBLIC_WORK_CHECK,
   ],
 };

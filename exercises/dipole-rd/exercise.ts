@@ -23,8 +23,10 @@ fn dipoleRd(sigmaSPrime: f32, sigmaA: f32, eta: f32, r: f32) -> f32 {
     'The two source terms add: the virtual source is a negative source above the surface, and z_v > 0 is its distance.',
   ],
   gradingNotes:
-    'Each case passes when |R − R_ref| ≤ 1e-9 + 1e-4·|R_ref| (mm⁻²). Public: skim milk over ' +
-    "r = 0 … 10 mm and a material at η = 1.5. Hidden: α' = 0, σa = 0, no medium, r = 100 mm.",
+    'Each public case passes when |R − R_ref| ≤ 1e-9 + 1e-4·|R_ref| (mm⁻²). Public: skim milk over ' +
+    'r = 0 … 10 mm and a material at η = 1.5. Hidden checks draw materials and distances from ' +
+    "the grading seed (relative tolerance 1e-4): any material, α' = 0, σa = 0, no medium, far " +
+    'from the source.',
   subject: {
     name: 'dipoleRd',
     params: [

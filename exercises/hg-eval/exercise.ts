@@ -26,7 +26,8 @@ fn hgPhase(g: f32, mu: f32) -> f32 {
   ],
   gradingNotes:
     'Each case passes when |p − p_ref| ≤ 1e-7 + 1e-4·|p_ref|. Public: g ∈ {0, 0.3, 0.7, −0.5}, ' +
-    'μ ∈ [−1, 1]. Hidden: far tail at g = ±0.999, isotropy at g = 0, forward peaks at g = 0.9 and 0.999.',
+    'μ ∈ [−1, 1]. Hidden checks draw g and μ from the grading seed: arbitrary lobes, the far ' +
+    'tail of strong lobes, isotropy, and forward peaks.',
   subject: {
     name: 'hgPhase',
     params: [

@@ -65,9 +65,10 @@ fn sampleHgMu(g: f32, xi: f32) -> f32 {
     'For |g| < 1e-3 return 2ξ − 1: the formula divides two tiny numbers there. Clamp μ to [−1, 1].',
   ],
   gradingNotes:
-    'Distribution tests: χ² of 20000 stratified samples in 20 equiprobable bins at α = 1e-6 ' +
-    '(critical value 63.7). Public: g = 0.7 and g = −0.5. Hidden: g = 0.95, the end points, ' +
-    'the median, and g = 1e-7 (tolerance 1e-5 + 1e-4·|μ_ref|).',
+    'Public: χ² of 20000 stratified samples in 20 equiprobable bins at α = 1e-6 (critical value ' +
+    '63.7) for g = 0.7 and g = −0.5. Hidden checks draw g and ξ from the grading seed: the ' +
+    'distribution with independent uniforms (χ² in other bins and Kolmogorov–Smirnov), end ' +
+    'points, medians and single values, and nearly isotropic g.',
   subject: {
     name: 'sampleHgMu',
     params: [

@@ -34,7 +34,8 @@ fn marchTransmittance(sigma0: f32, amplitude: f32, d: f32, steps: u32) -> f32 {
   ],
   gradingNotes:
     "Each case passes when |T − T_ref| ≤ 1e-7 + 1e-4·|T_ref| against the book's midpoint marcher. " +
-    'Public: 1 to 16 steps. Hidden: σ0 = 1e6, σ0 = 0, d = 0, 64 steps over 10 m.',
+    'Public: 1 to 16 steps and a denser medium. Hidden checks draw their rays from the grading ' +
+    'seed: any medium, length and step count, opaque media, no attenuation, long rays.',
   subject: {
     name: 'marchTransmittance',
     params: [

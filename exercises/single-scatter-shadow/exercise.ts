@@ -27,7 +27,8 @@ fn singleScatter(sigmaS: f32, sigmaA: f32, a: f32, b: f32, len: f32, steps: u32)
   ],
   gradingNotes:
     'Each case passes when |L − L_ref| ≤ 1e-7 + 1e-4·|L_ref|. Public: 1 to 16 steps, several ' +
-    'media. Hidden: σs = 0, σt = 1e6, a = 200, 64 steps through a thin medium.',
+    'media. Hidden checks draw their rays from the grading seed: any medium, light and step ' +
+    'count, no scattering, opaque media and occluded lights, thin media with many steps.',
   subject: {
     name: 'singleScatter',
     params: [

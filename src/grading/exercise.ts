@@ -5,6 +5,9 @@
 // (safe for the page's bundle), hidden.ts exports the hidden checks (imported only
 // by the command line and the tests).
 import type { ExerciseInfo, GradeOutcome } from './types.ts';
+import type { GeneratedCasesCheck } from './checks/generated.ts';
+import type { DistributionCheck } from './checks/distribution.ts';
+import type { TrackingCheck } from './checks/tracking.ts';
 
 /** Parameter types the grader can feed: scalars, or the rng state pointer it seeds itself. */
 export type ParamType = 'f32' | 'u32' | 'i32' | 'ptr<function, u32>';
@@ -78,7 +81,13 @@ export interface MonteCarloCheck extends CheckBase {
   alpha: number;
 }
 
-export type CheckSpec = CasesCheck | ChiSquareCheck | MonteCarloCheck;
+export type CheckSpec =
+  | CasesCheck
+  | ChiSquareCheck
+  | MonteCarloCheck
+  | GeneratedCasesCheck
+  | DistributionCheck
+  | TrackingCheck;
 
 /** Library functions the student may call, linked in front of the submission. */
 export interface Helpers {
@@ -89,6 +98,18 @@ export interface Helpers {
    * called), plus any exercise-specific helper functions the statement describes.
    */
   wgsl: string;
+  /**
+   * Private u32 counters the helpers declare and increment (e.g. extinction() lookups,
+   * random numbers drawn). The harness zeroes them before each call and writes them
+   * after the result, so checks can see how the estimator uses the helpers.
+   */
+  counters?: readonly string[];
+  /**
+   * Private f32 variables the helpers declare and read (a hidden medium's parameters).
+   * The harness fills them from extra input words after the function's arguments, so
+   * the student's code never sees them as arguments.
+   */
+  extraInputs?: readonly string[];
 }
 
 /**

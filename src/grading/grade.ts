@@ -15,8 +15,13 @@ import {
   type ChiSquareCheck,
   type CheckSpec,
   type ExerciseDefinition,
+  type Helpers,
   type MonteCarloCheck,
 } from './exercise.ts';
+import { casesForSeed } from './checks/generated.ts';
+import { runDistributionCheck } from './checks/distribution.ts';
+import { runTrackingCheck } from './checks/tracking.ts';
+import type { CheckRuntime, RunOutput } from './checks/runtime.ts';
 import {
   blankComments,
   GUARD_COUNTER,
@@ -104,6 +109,15 @@ function harness(exercise: ExerciseDefinition): string {
     callArgs.push(`sbg_a${index}`);
     offset += 1;
   });
+  // A hidden medium's parameters: private variables of the helpers, filled from words
+  // after the arguments (the student's function never receives them).
+  for (const name of exercise.helpers?.extraInputs ?? []) {
+    lines.push(`  ${name} = bitcast<f32>(sbg_inputs[sbg_base + ${offset}u]);`);
+    offset += 1;
+  }
+  // Helper call counters, zeroed before the call and written after the result.
+  const counters = exercise.helpers?.counters ?? [];
+  const outputWords = outputStride(exercise);
   return [
     '@group(0) @binding(0) var<storage, read> sbg_inputs: array<u32>;',
     '@group(0) @binding(1) var<storage, read_write> sbg_outputs: array<u32>;',
@@ -119,20 +133,32 @@ function harness(exercise: ExerciseDefinition): string {
     'fn sbg_main(@builtin(global_invocation_id) sbg_id: vec3u) {',
     '  let sbg_i = sbg_id.x;',
     '  if (sbg_i >= sbg_inputs[0]) { return; }',
-    `  let sbg_base = ${HEADER_WORDS}u + sbg_i * ${Math.max(offset, 1)}u;`,
+    `  let sbg_base = ${HEADER_WORDS}u + sbg_i * ${Math.max(inputStride(exercise), 1)}u;`,
     ...lines,
     '  var sbg_state = sbg_hash(sbg_inputs[1] ^ sbg_hash(sbg_i));',
     `  ${GUARD_COUNTER} = 0u;`,
     `  ${GUARD_FLAG} = 0u;`,
+    ...counters.map((name) => `  ${name} = 0u;`),
     `  let sbg_r = ${subject.name}(${callArgs.join(', ')});`,
-    '  sbg_outputs[2u * sbg_i] = bitcast<u32>(sbg_r);',
-    `  sbg_outputs[2u * sbg_i + 1u] = ${GUARD_FLAG};`,
+    `  sbg_outputs[${outputWords}u * sbg_i] = bitcast<u32>(sbg_r);`,
+    `  sbg_outputs[${outputWords}u * sbg_i + 1u] = ${GUARD_FLAG};`,
+    ...counters.map((name, k) => `  sbg_outputs[${outputWords}u * sbg_i + ${k + 2}u] = ${name};`),
     '}',
   ].join('\n');
 }
 
 function argumentCount(exercise: ExerciseDefinition): number {
   return exercise.subject.params.filter((p) => p.type !== 'ptr<function, u32>').length;
+}
+
+/** Input words per call: the arguments, then the helpers' extra inputs (all f32). */
+function inputStride(exercise: ExerciseDefinition): number {
+  return argumentCount(exercise) + (exercise.helpers?.extraInputs?.length ?? 0);
+}
+
+/** Output words per call: the result, the loop-guard flag, then the helpers' counters. */
+function outputStride(exercise: ExerciseDefinition): number {
+  return 2 + (exercise.helpers?.counters?.length ?? 0);
 }
 
 /** Resolves after `ms`, or never when ms is not finite. */
@@ -387,7 +413,7 @@ function prepareReference(
     perDevice = new Map();
     referencePrograms.set(device, perDevice);
   }
-  const key = `${exercise.id}\n${exercise.reference}`;
+  const key = `${exercise.id}\n${exercise.reference}\n${JSON.stringify(exercise.helpers ?? null)}`;
   let program = perDevice.get(key);
   if (!program) {
     program = (async () => {
@@ -469,10 +495,28 @@ async function run(
   timeoutMs: number,
   what: string,
 ): Promise<number[]> {
-  const types = exercise.subject.params
-    .filter((p) => p.type !== 'ptr<function, u32>')
-    .map((p) => p.type);
-  const stride = Math.max(argumentCount(exercise), 1);
+  return (await runDetailed(device, exercise, program, calls, seed, timeoutMs, what)).values;
+}
+
+/**
+ * Runs `calls` (arguments, then the helpers' extra inputs) through a program linked
+ * with `exercise.helpers`: one f32 result and the helpers' counters per call.
+ */
+async function runDetailed(
+  device: GPUDevice,
+  exercise: ExerciseDefinition,
+  program: Program,
+  calls: readonly (readonly number[])[],
+  seed: number,
+  timeoutMs: number,
+  what: string,
+): Promise<RunOutput> {
+  const types = [
+    ...exercise.subject.params.filter((p) => p.type !== 'ptr<function, u32>').map((p) => p.type),
+    ...(exercise.helpers?.extraInputs ?? []).map(() => 'f32' as const),
+  ];
+  const stride = Math.max(inputStride(exercise), 1);
+  const words = outputStride(exercise);
   const inputs = new Uint32Array(HEADER_WORDS + calls.length * stride);
   inputs[0] = calls.length;
   inputs[1] = seed >>> 0;
@@ -481,7 +525,7 @@ async function run(
       inputs[HEADER_WORDS + i * stride + k] = encode(type, args[k] ?? 0);
     });
   });
-  const outputBytes = Math.max(8, calls.length * 8);
+  const outputBytes = Math.max(4 * words, calls.length * 4 * words);
   device.pushErrorScope('out-of-memory');
   device.pushErrorScope('validation');
   const input = device.createBuffer({
@@ -520,19 +564,23 @@ async function run(
     if (validation) throw dispatchStop(program, what, 'validation', validation.message);
     if (memory) throw dispatchStop(program, what, 'out-of-memory', memory.message);
     await withDeviceGuards(device, timeoutMs, what, readBack.mapAsync(GPUMapMode.READ));
-    const words = new Uint32Array(readBack.getMappedRange().slice(0));
+    const data = new Uint32Array(readBack.getMappedRange().slice(0));
     readBack.unmap();
     const results: number[] = [];
+    const counters = (exercise.helpers?.counters ?? []).map(() => new Array<number>(calls.length));
     let budgetHit = -1;
     for (let i = 0; i < calls.length; i++) {
-      results.push(decodeF32(words[2 * i] ?? 0));
-      if (budgetHit < 0 && words[2 * i + 1] !== 0) budgetHit = i;
+      results.push(decodeF32(data[words * i] ?? 0));
+      if (budgetHit < 0 && data[words * i + 1] !== 0) budgetHit = i;
+      counters.forEach((counter, k) => {
+        counter[i] = data[words * i + 2 + k] ?? 0;
+      });
     }
     if (budgetHit >= 0 && program.role === 'student') {
       const budget = exercise.loopBudget ?? DEFAULT_LOOP_BUDGET;
       throw new LoopBudgetStop(budget, what, formatArgs(exercise, calls[budgetHit] ?? []));
     }
-    return results;
+    return { values: results, counters };
   } finally {
     input.destroy();
     output.destroy();
@@ -569,6 +617,41 @@ interface CheckContext {
   student: Program;
   timeoutMs: number;
   seed: number;
+  /** The same program linked with other helpers (e.g. a hidden medium), compiled once. */
+  programFor: (helpers: Helpers) => Promise<Program>;
+}
+
+const sharedRuns = new WeakMap<Program, Map<string, Promise<RunOutput>>>();
+
+/** The runtime a check runner in checks/ gets: runs with any helpers, shared by key. */
+function checkRuntime(ctx: CheckContext): CheckRuntime {
+  return {
+    exercise: ctx.exercise,
+    seed: ctx.seed,
+    formatArgs: (args) => formatArgs(ctx.exercise, args),
+    formatNumber,
+    run: async (calls, streamSeed, what, helpers, shareKey) => {
+      const linked = helpers ? { ...ctx.exercise, helpers } : ctx.exercise;
+      const program = helpers ? await ctx.programFor(helpers) : ctx.student;
+      const go = (): Promise<RunOutput> =>
+        runDetailed(ctx.device, linked, program, calls, streamSeed, ctx.timeoutMs, what);
+      if (shareKey === undefined) return go();
+      let perProgram = sharedRuns.get(program);
+      if (!perProgram) {
+        perProgram = new Map();
+        sharedRuns.set(program, perProgram);
+      }
+      const key = `${streamSeed}\n${shareKey}`;
+      let shared = perProgram.get(key);
+      if (!shared) {
+        shared = go();
+        perProgram.set(key, shared);
+        // A failed run (loop budget, timeout) is not kept: the next check reports it too.
+        shared.catch(() => perProgram?.delete(key));
+      }
+      return shared;
+    },
+  };
 }
 
 async function runCasesCheck(
@@ -788,6 +871,12 @@ function runCheck(
     case 'mean':
     case 'variance':
       return runMonteCarloCheck(ctx, check, visibility);
+    case 'generated-cases':
+      return runCasesCheck(ctx, casesForSeed(check, ctx.seed), visibility);
+    case 'distribution':
+      return runDistributionCheck(checkRuntime(ctx), check, visibility);
+    case 'tracking':
+      return runTrackingCheck(checkRuntime(ctx), check, visibility);
   }
 }
 
@@ -795,7 +884,7 @@ async function gradeProgram(
   device: GPUDevice,
   library: ShaderLibrary,
   exercise: ExerciseDefinition,
-  prepare: (timeoutMs: number) => Promise<Program>,
+  prepare: (timeoutMs: number, helpers?: Helpers) => Promise<Program>,
   options: GradeOptions,
 ): Promise<GradeOutcome> {
   const seed = (options.seed ?? DEFAULT_SEED) >>> 0;
@@ -813,7 +902,17 @@ async function gradeProgram(
   }
   try {
     const student = await prepare(timeoutMs);
-    const ctx: CheckContext = { device, library, exercise, student, timeoutMs, seed };
+    const linked = new Map<string, Promise<Program>>();
+    const programFor = (helpers: Helpers): Promise<Program> => {
+      const key = JSON.stringify(helpers);
+      let program = linked.get(key);
+      if (!program) {
+        program = prepare(timeoutMs, helpers);
+        linked.set(key, program);
+      }
+      return program;
+    };
+    const ctx: CheckContext = { device, library, exercise, student, timeoutMs, seed, programFor };
     const results: CheckResult[] = [];
     let overruns = 0;
     let budget = exercise.loopBudget ?? DEFAULT_LOOP_BUDGET;
@@ -921,8 +1020,9 @@ export async function gradeSubmission(
       device,
       library,
       definition,
-      async (timeoutMs) => {
-        const prepared = await prepareStudent(device, library, definition, source, timeoutMs);
+      async (timeoutMs, helpers) => {
+        const linked = helpers ? { ...definition, helpers } : definition;
+        const prepared = await prepareStudent(device, library, linked, source, timeoutMs);
         return prepared.program;
       },
       options,
@@ -948,7 +1048,8 @@ export function gradeReference(
     device,
     library,
     exercise,
-    (timeoutMs) => prepareReference(device, library, exercise, timeoutMs),
+    (timeoutMs, helpers) =>
+      prepareReference(device, library, helpers ? { ...exercise, helpers } : exercise, timeoutMs),
     options,
   );
 }
