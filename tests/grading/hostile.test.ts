@@ -3,7 +3,7 @@
 // line and column, and an exception inside the grader becomes 'internal-error'
 // without naming a hidden check.
 import { describe, expect, it } from 'vitest';
-import { gradeSubmission } from '../../src/grading/grade.ts';
+import { gradeReference, gradeSubmission } from '../../src/grading/grade.ts';
 import { loadFullExercise } from '../../src/grading/node.ts';
 import type { CheckSpec, ExerciseDefinition } from '../../src/grading/exercise.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
@@ -102,6 +102,26 @@ describe('grader-side failures are outcomes', () => {
     });
     expect(outcome.status).toBe('internal-error');
     if (outcome.status === 'internal-error') expect(outcome.message).toContain('no-such-exercise');
+  });
+
+  it('turns a bind-group validation error of the dispatch into an outcome, not a thrown Error', async () => {
+    // A reference with a binding of its own: the pipeline's 'auto' layout then wants a
+    // binding the harness's bind group lacks, and the device refuses the dispatch.
+    const device = await nodeDevice();
+    const exercise = await loadFullExercise('beer-law');
+    const outcome = await gradeReference(
+      device,
+      SHADER_LIBRARY,
+      {
+        ...exercise,
+        reference:
+          '@group(0) @binding(2) var<storage, read_write> extra: array<f32>;\n' +
+          'fn transmittance(sigmaT: f32, d: f32) -> f32 { extra[0] = d; return exp(-sigmaT * d); }',
+      },
+      { which: 'public' },
+    );
+    expect(outcome.status).toBe('internal-error');
+    if (outcome.status === 'internal-error') expect(outcome.message).toContain('validation');
   });
 
   it('turns an exception in a hidden check into internal-error without naming the check', async () => {
