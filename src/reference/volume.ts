@@ -6,7 +6,7 @@
 // the march composites the same midpoint samples with the same termination rule.
 import { rayBoxSegment, RAY_T_LIMIT } from './geometry.ts';
 import { gridDensityTrilinear, gridHasVolume, type DensityGrid, type Vec3 } from './medium.ts';
-import { FINITE_LIMIT } from './transmittance.ts';
+import { FINITE_LIMIT, saturatingQuotient } from './transmittance.ts';
 
 export const TRANSFER_MAX_POINTS = 16;
 export const VOLUME_MAX_STEPS = 8192;
@@ -152,7 +152,9 @@ export function volumeRaymarch(
   const span = t1 - t0;
   const n = volumeStepCount(span, stepSize);
   const h = span / n;
-  const ratio = h / clamp(referenceStep, 1e-12, FINITE_LIMIT);
+  // h/Δs₀ of the unclamped lengths (units do not matter), capped at the largest f32 like
+  // the shader's saturating quotient; Δs₀ ≤ 0 makes every opacity > 0 opaque.
+  const ratio = saturatingQuotient(h, referenceStep);
   result.plannedSteps = n;
   result.capped = !(stepSize > 0) || span > VOLUME_MAX_STEPS * stepSize ? 1 : 0;
   // L = Σ_i T_i α'_i c_i with T_i = Π_{j<i} (1 − α'_j), summed until T < ε.
