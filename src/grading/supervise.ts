@@ -47,6 +47,8 @@ export function gradeUnderLimit(
   job: GradeJob,
   timeLimitS: number,
   fallbackTitle: string,
+  /** The worker module (the tests substitute ones that crash, hang or linger). */
+  worker: string = WORKER,
 ): Promise<SupervisedGrade> {
   const started = performance.now();
   const seconds = (): number => (performance.now() - started) / 1000;
@@ -64,7 +66,7 @@ export function gradeUnderLimit(
     // The worker's stdout goes to our stderr: our stdout carries only the report.
     // It inherits our execArgv (the TypeScript loader) and stays in our process
     // group, so whoever kills this command's group kills the worker too.
-    const child = fork(WORKER, [], { stdio: ['ignore', 2, 2, 'ipc'], serialization: 'advanced' });
+    const child = fork(worker, [], { stdio: ['ignore', 2, 2, 'ipc'], serialization: 'advanced' });
     const finish = (result: GradeAnswer): void => {
       if (settled) return;
       settled = true;
