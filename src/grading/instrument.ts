@@ -288,7 +288,18 @@ export function findRefusals(tokens: readonly Token[], lines: LineIndex): Refusa
   };
   for (let k = 0; k < tokens.length; k++) {
     const token = tokens[k] as Token;
-    if (token.kind !== 'ident') continue;
+    if (token.kind !== 'ident') {
+      // Characters the compiler reports without a position (e.g. NUL), or that mark a
+      // file that was not UTF-8: say where they are.
+      const c = token.text.charCodeAt(0);
+      if ((c < 0x20 && c !== 0) || c === 0x7f) {
+        const code = `U+${c.toString(16).toUpperCase().padStart(4, '0')}`;
+        at(token, `a control character (${code}) that WGSL does not allow`);
+      } else if (c === 0xfffd) {
+        at(token, 'a byte sequence that is not UTF-8 (shown as U+FFFD); save the file as UTF-8');
+      }
+      continue;
+    }
     const afterAt = tokens[k - 1]?.text === '@';
     if (token.text.startsWith(RESERVED_PREFIX)) {
       at(
@@ -589,6 +600,14 @@ export function prepareSource(
   const tokens = tokenize(code);
   const lines = new LineIndex(text);
   const refusals = findRefusals(tokens, lines);
+  // NUL anywhere, comments included: Dawn refuses the whole module without a position.
+  for (let at = text.indexOf('\0'); at >= 0; at = text.indexOf('\0', at + 1)) {
+    refusals.push({
+      ...lines.position(at),
+      what: 'a NUL character (U+0000), which WGSL does not allow',
+    });
+  }
+  refusals.sort((a, b) => a.line - b.line || a.column - b.column);
   if (refusals.length > 0) return { ok: false, message: refusalMessage(refusals) };
   return {
     ok: true,

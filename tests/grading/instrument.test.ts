@@ -172,6 +172,20 @@ describe('prepareSource: size cap, refusals with positions', () => {
     expect(fine.ok).toBe(true);
   });
 
+  it('refuses control characters and undecodable bytes in code, with their position', () => {
+    const result = prepareSource(
+      'fn f() {\n  \u0007 return; \ufffd }\n// \u0001 and \u0000 in a comment',
+      10,
+    );
+    expect(result.ok).toBe(false);
+    if (result.ok) return;
+    expect(result.message).toContain('line 2, column 3: a control character (U+0007)');
+    expect(result.message).toContain('line 2, column 13: a byte sequence that is not UTF-8');
+    // NUL even in a comment (Dawn refuses it anywhere); other controls there are fine.
+    expect(result.message).toContain('line 3, column 10: a NUL character');
+    expect(result.message).not.toContain('U+0001');
+  });
+
   it('keeps line and column of a BOM + CR LF source (one line per CR LF)', () => {
     const source =
       '\ufefffn f(x: f32) -> f32 {\r\n  for (var i = 0; i < 3; i++) { x += 1.0; }\r\n  return x;\r\n}\r\n';
