@@ -52,7 +52,20 @@ export function gradeUnderLimit(
 ): Promise<SupervisedGrade> {
   const started = performance.now();
   const seconds = (): number => (performance.now() - started) / 1000;
-  const tooLarge = sizeRefusal(statSync(job.submission).size, MAX_SUBMISSION_BYTES);
+  let bytes: number;
+  try {
+    bytes = statSync(job.submission).size;
+  } catch (error) {
+    return Promise.resolve({
+      outcome: {
+        status: 'internal-error',
+        message: `The grader could not read the submission (${(error as Error).message}).`,
+      },
+      title: fallbackTitle,
+      seconds: seconds(),
+    });
+  }
+  const tooLarge = sizeRefusal(bytes, MAX_SUBMISSION_BYTES);
   if (tooLarge) {
     return Promise.resolve({
       outcome: { status: 'rejected', message: tooLarge },
@@ -77,9 +90,10 @@ export function gradeUnderLimit(
       if (child.exitCode === null && child.signalCode === null) child.kill('SIGKILL');
       resolve({ ...result, seconds: seconds() });
     };
-    const onSignal = (): void => {
+    // Stopped from outside (Ctrl-C, `timeout`): take the worker along, exit as killed.
+    const onSignal = (signal: NodeJS.Signals): void => {
       child.kill('SIGKILL');
-      process.exit(130);
+      process.exit(signal === 'SIGINT' ? 130 : 143);
     };
     process.on('SIGTERM', onSignal);
     process.on('SIGINT', onSignal);
