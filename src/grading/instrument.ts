@@ -465,7 +465,9 @@ export function mapPosition(
 export function blankImports(source: string, code: string = blankComments(source)): string {
   const out: string[] = [];
   let copied = 0;
-  for (const match of code.matchAll(/^[ \t]*import[^;\n]*;?[ \t]*$/gm)) {
+  // `import` as a whole word: a line starting with an identifier such as `importance`
+  // is code.
+  for (const match of code.matchAll(/^[ \t]*import(?![\p{XID_Continue}])[^;\n]*;?[ \t]*$/gmu)) {
     out.push(source.slice(copied, match.index), ' '.repeat(match[0].length));
     copied = match.index + match[0].length;
   }

@@ -3,6 +3,7 @@
 import { describe, expect, it } from 'vitest';
 import {
   blankComments,
+  blankImports,
   findRefusals,
   instrumentLoops,
   LineIndex,
@@ -198,6 +199,16 @@ describe('prepareSource: size cap, refusals with positions', () => {
       { line: 2, column: 32, length: expect.any(Number) as number },
     ]);
     expect(result.functions[0]).toMatchObject({ name: 'f', result: 'f32' });
+  });
+});
+
+describe('imports', () => {
+  it('blanks WESL import lines in place, not identifiers that start with "import"', () => {
+    const source = 'import package::rng::rngNextFloat;\nfn f() -> f32 {\n  importance = 1.0;\n}';
+    const out = blankImports(source);
+    expect(out).toHaveLength(source.length);
+    expect(out.split('\n')[0]?.trim()).toBe('');
+    expect(out).toContain('importance = 1.0;');
   });
 });
 
