@@ -730,7 +730,11 @@ export function equiangularSegmentSample(
   const thetaB = Math.atan2(segment[1] - tClosest, h);
   const [t, pdf] = equiangularSample(h, thetaA, thetaB, xi);
   if (!(pdf > 0))
-    return [segment[0] + xi * (segment[1] - segment[0]), 1 / (segment[1] - segment[0])];
+    return [
+      segment[0] + xi * (segment[1] - segment[0]),
+      // 1/(t1 − t0), capped at the largest f32 like the shader (an empty segment gives it).
+      segment[1] > segment[0] ? Math.min(1 / (segment[1] - segment[0]), F32_MAX) : F32_MAX,
+    ];
   return [Math.min(Math.max(tClosest + t, segment[0]), segment[1]), pdf];
 }
 

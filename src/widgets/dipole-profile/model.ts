@@ -124,7 +124,9 @@ export interface ProfileCurves {
 
 /** The Burley comparison's d = ℓ/s(A), ℓ = 1/σt′, A = the dipole's total (as the kernel). */
 export function burleyLength(sigmaTPrime: number, albedo: number): number {
-  return 1 / (Math.max(sigmaTPrime, 1e-9) * burleyShapeSearchlight(albedo));
+  // No medium has no spread (d = 0, where burleyProfile is 0), as in the kernel.
+  if (!(sigmaTPrime > 0)) return 0;
+  return 1 / (sigmaTPrime * burleyShapeSearchlight(albedo));
 }
 
 /** Twin of evaluateProfiles: the same radii and formulas in float64, on f32-rounded inputs. */
