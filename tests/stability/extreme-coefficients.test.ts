@@ -310,6 +310,16 @@ describeShaderFunction({
       expected: [UNIT_DIPOLE.albedo, UNIT_DIPOLE.total, 1e-30 * UNIT_DIPOLE.profileAtOne, 1],
     },
     {
+      name: "σs' = 1e37, σa = 1e35 (σt' past 2^120: both scaled by one factor): the same α' and R_d, R_d(1) = 0",
+      args: [1e37, 1e35, 1.3, 1],
+      expected: [UNIT_DIPOLE.albedo, UNIT_DIPOLE.total, 0, 1],
+      tolerance: {
+        relative: 2e-5,
+        absolute: F32_MIN_NORMAL,
+        reason: 'as above; e^{-σtr·r} underflows to 0',
+      },
+    },
+    {
       name: "σs' = 1e30, σa = 1e28: the same α' and R_d (R_d(r) would be 1e60: saturates, finite)",
       args: [1e30, 1e28, 1.3, 1e-30],
       expected: [
