@@ -13,6 +13,7 @@
 import { WidgetElement } from '../base/widgetElement.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import type { ExerciseDefinition } from '../../grading/exercise.ts';
+import { SUBMISSION_RULES } from '../../grading/instrument.ts';
 import { EXERCISE_WIDGET } from './schema.ts';
 import { createEditor, type ExerciseEditor } from './editor.ts';
 import { ResultView, outcomeSummary } from './resultView.ts';
@@ -225,7 +226,11 @@ export class ExerciseElement extends WidgetElement {
         'save and download your code, but the checks cannot run. ',
       this.gpuStatus,
     );
-    note.append(how, browsers);
+    const rules = document.createElement('p');
+    const rulesTitle = document.createElement('strong');
+    rulesTitle.textContent = 'What to submit. ';
+    rules.append(rulesTitle, SUBMISSION_RULES);
+    note.append(how, rules, browsers);
     return note;
   }
 
