@@ -8,6 +8,7 @@
 // and also the grader's own failures — timeout, device-lost, internal-error — which
 // the report presents as such); 1 when the self-test fails; 2 for a usage error
 // (unknown exercise, missing file, bad flags), when no report is written.
+import { randomBytes } from 'node:crypto';
 import { existsSync, statSync, writeFileSync, writeSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -101,6 +102,11 @@ async function main(argv: string[]): Promise<number> {
     if (!Number.isInteger(seed) || seed < 0 || seed > 0xffffffff)
       throw new UsageError('--seed must be an integer in [0, 2^32)');
   }
+  // Without --seed every grading draws its own seed. Hidden cases and media are drawn
+  // from it, and hidden.ts is open source, so a fixed default seed would let anyone
+  // compute the hidden inputs and table them. The report states the seed; --seed
+  // reproduces a grade.
+  seed ??= randomBytes(4).readUInt32LE(0);
   let timeLimitS = DEFAULT_TIME_LIMIT_S;
   if (values['time-limit'] !== undefined) {
     timeLimitS = /^\d+(\.\d+)?$/.test(values['time-limit'])
