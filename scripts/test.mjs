@@ -3,8 +3,10 @@
 //   2. typecheck (tsc), lint (eslint), formatting (prettier)
 //   3. Vitest: twins, WGSL through Dawn, hard cases, the chapter build
 //   4. the production build, then Playwright end-to-end tests in Chromium
-// Each of tsc/eslint/prettier/build counts as one test; Vitest and Playwright
-// count their own tests. The last line is "N passed, N failed".
+//   5. the Firefox end-to-end tests (tests/firefox, node:test + puppeteer-core), with
+//      firefox-esr and mesa-vulkan-drivers (lavapipe) installed when root
+// Each of tsc/eslint/prettier/build counts as one test; Vitest, Playwright and the
+// Firefox tests count their own tests. The last line is "N passed, N failed".
 import { spawnSync } from 'node:child_process';
 import { existsSync, readFileSync, rmSync } from 'node:fs';
 
@@ -48,6 +50,10 @@ if (!run('chromium', 'sh', ['scripts/ensure-chromium.sh'])) {
   console.log('\n0 passed, 1 failed');
   process.exit(1);
 }
+if (!run('firefox', 'sh', ['scripts/ensure-firefox.sh'])) {
+  console.log('\n0 passed, 1 failed');
+  process.exit(1);
+}
 
 single('typecheck', 'npx', ['tsc', '--noEmit', '-p', '.']);
 single('lint', 'npx', ['eslint', '.']);
@@ -69,6 +75,22 @@ if (built) {
     passed: r.stats?.expected ?? 0,
     failed: (r.stats?.unexpected ?? 0) + (r.stats?.flaky ?? 0),
   }));
+  runner(
+    'firefox e2e',
+    'node',
+    [
+      '--import',
+      'tsx',
+      '--test',
+      '--test-reporter=spec',
+      '--test-reporter-destination=stdout',
+      '--test-reporter=./tests/firefox/reporter.mjs',
+      '--test-reporter-destination=test-results/firefox.json',
+      'tests/firefox/book.firefox.ts',
+    ],
+    'test-results/firefox.json',
+    (r) => ({ passed: r.passed ?? 0, failed: r.failed ?? 0 }),
+  );
 } else {
   failed += 1;
   failures.push('build (end-to-end tests not run)');

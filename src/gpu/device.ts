@@ -27,7 +27,7 @@ async function createContext(): Promise<GpuContext> {
   }
   const adapter = await navigator.gpu.requestAdapter();
   if (!adapter) throw new GpuUnavailableError('WebGPU found no suitable GPU adapter');
-  const hasTimestamps = adapter.features.has('timestamp-query');
+  const hasTimestamps = adapter.features.has('timestamp-query') && trustsTimestamps(adapter);
   const device = await adapter.requestDevice({
     requiredFeatures: hasTimestamps ? ['timestamp-query'] : [],
   });
@@ -49,13 +49,32 @@ async function createContext(): Promise<GpuContext> {
  * lavapipe a fallback adapter: the figures are right but slow there, so say so.
  */
 export function describeAdapter(adapter: GPUAdapter): string {
+  const { name, fallback } = adapterIdentity(adapter);
+  if (fallback) return name ? `${name}, a software fallback adapter` : 'software fallback adapter';
+  return name || 'adapter unnamed by the browser';
+}
+
+function adapterIdentity(adapter: GPUAdapter): { name: string; fallback: boolean } {
   const info = adapter.info;
   const name = [info.vendor, info.architecture, info.description].filter(Boolean).join(' ');
   // `isFallbackAdapter` moved from the adapter to its info; older browsers have the former.
   const legacy = (adapter as GPUAdapter & { isFallbackAdapter?: boolean }).isFallbackAdapter;
   const fallback = (info.isFallbackAdapter as boolean | undefined) ?? legacy ?? false;
-  if (fallback) return name ? `${name}, a software fallback adapter` : 'software fallback adapter';
-  return name || 'adapter unnamed by the browser';
+  return { name, fallback };
+}
+
+/**
+ * Whether the widgets time their passes with the adapter's timestamp queries. Not on
+ * a fallback adapter that gives no name, which is Firefox (wgpu) on a CPU driver such
+ * as lavapipe: there, once a page has run a few kernels, timestamp spans come back far
+ * too short (the transfer function 0.053 ms against 436 ms by wall clock on the same
+ * machine), and a widget that sizes its work by measured time runs away (the
+ * delta-tracking calibration took 90 s instead of 7 s). A software adapter is the
+ * CPU, so wall time is its true cost; the widgets then say "wall time".
+ */
+function trustsTimestamps(adapter: GPUAdapter): boolean {
+  const { name, fallback } = adapterIdentity(adapter);
+  return !(fallback && !name);
 }
 
 /** The page's shared device; rejects with GpuUnavailableError when there is none. */
