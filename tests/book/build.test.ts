@@ -37,6 +37,8 @@ describe('the book builds', () => {
     expect(book.pages.map((p) => p.file).slice(book.chapters.length + 1)).toEqual([
       'appendix/shader-library.html',
       'deck.html',
+      ...Object.keys(WIDGET_CATALOG).map((widget) => `embed/${widget}.html`),
+      'embed/index.html',
     ]);
   });
 

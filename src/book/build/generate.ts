@@ -18,12 +18,21 @@ import {
   renderArticlePage,
   renderDeckPage,
   renderHomePage,
+  SITE_TITLE,
   type PageLink,
 } from './pages.ts';
 import { APPENDIX_FILE, APPENDIX_SUMMARY, APPENDIX_TITLE, renderAppendix } from './appendix.ts';
 import { loadShaderDocs } from './shaderDocs.ts';
 import { DECK, validateDeck } from './deck.ts';
 import { markRoot, relativizeLinks } from './links.ts';
+import {
+  EMBED_INDEX_FILE,
+  EMBED_INDEX_SUMMARY,
+  EMBED_INDEX_TITLE,
+  planEmbeds,
+  renderEmbedIndex,
+  renderEmbedPage,
+} from './embeds.ts';
 
 export interface BookPage {
   /** Path relative to the project root, e.g. `chapters/02-extinction-and-transmittance.html`. */
@@ -65,10 +74,14 @@ export function buildBook(root: string): Book {
     rendered.set(chapter.slug, result);
   }
   const appendixLink: PageLink = { path: `/${APPENDIX_FILE}`, title: APPENDIX_TITLE };
+  const embedIndexLink: PageLink = { path: `/${EMBED_INDEX_FILE}`, title: EMBED_INDEX_TITLE };
   const pages: BookPage[] = [
     {
       file: 'index.html',
-      html: renderHomePage(chapters, [{ ...appendixLink, summary: APPENDIX_SUMMARY }]),
+      html: renderHomePage(chapters, [
+        { ...appendixLink, summary: APPENDIX_SUMMARY },
+        { ...embedIndexLink, summary: EMBED_INDEX_SUMMARY },
+      ]),
       widgets: [],
     },
   ];
@@ -126,6 +139,31 @@ export function buildBook(root: string): Book {
     file: 'deck.html',
     html: renderDeckPage(DECK, new Map(chapters.map((chapter) => [chapter.slug, chapter.title]))),
     widgets: [...new Set(DECK.map((slide) => slide.widget))],
+  });
+  // One embed page per catalog widget (embeds.ts), then the appendix that lists them.
+  const embeds = planEmbeds(
+    pages.flatMap((page) => (page.chapter ? [{ chapter: page.chapter, html: page.html }] : [])),
+  );
+  for (const embed of embeds)
+    pages.push({
+      file: embed.file,
+      html: renderEmbedPage(embed, SITE_TITLE),
+      widgets: [embed.widget],
+    });
+  pages.push({
+    file: EMBED_INDEX_FILE,
+    html: renderArticlePage({
+      kicker: 'Appendix',
+      title: EMBED_INDEX_TITLE,
+      summary: EMBED_INDEX_SUMMARY,
+      html: renderEmbedIndex(embeds),
+      toc: [
+        { level: 2, id: 'embed-how', text: 'How to embed a figure' },
+        { level: 2, id: 'embed-list', text: 'The figures' },
+      ],
+      previous: appendixLink,
+    }),
+    widgets: [],
   });
   // Every page's links to other pages become relative to it (links.ts), so the site
   // works under any base path.

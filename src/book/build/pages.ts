@@ -90,8 +90,8 @@ ${
 <ul class="chapter-list appendix-list">
 ${appendices
   .map(
-    (a) =>
-      `<li><a href="${a.path}"><span class="chapter-number">A</span><span class="chapter-title">${escapeHtml(a.title)}</span></a><p>${escapeHtml(a.summary)}</p></li>`,
+    (a, index) =>
+      `<li><a href="${a.path}"><span class="chapter-number">${String.fromCharCode(65 + index)}</span><span class="chapter-title">${escapeHtml(a.title)}</span></a><p>${escapeHtml(a.summary)}</p></li>`,
   )
   .join('\n')}
 </ul>`

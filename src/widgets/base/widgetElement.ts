@@ -19,6 +19,8 @@ import {
   widgetLink,
   writeWidgetState,
 } from './urlState.ts';
+import { embedHeight, embedUrl, iframeSnippet } from './embedCode.ts';
+import { siteUrl } from './siteUrl.ts';
 
 /** Hash keys a widget understands besides its parameters. */
 const STATE_KEYS = new Set(['present']);
@@ -133,8 +135,18 @@ export abstract class WidgetElement extends HTMLElement {
         <div class="sb-widget-tools">
           <button type="button" class="sb-button" data-action="present" aria-pressed="false"
             title="Presentation mode (F); Esc leaves it">Present</button>
-          <button type="button" class="sb-button" data-action="link"
-            title="Copy a link that restores this figure exactly">Copy link</button>
+          <div class="sb-copy">
+            <button type="button" class="sb-button" data-action="copy-menu"
+              aria-expanded="false" aria-controls="${this.widgetId}-copy">Copy</button>
+            <div class="sb-copy-menu" id="${this.widgetId}-copy" role="group"
+              aria-label="Copy this figure" hidden>
+              <button type="button" class="sb-button" data-action="link"
+                title="Copy a link that restores this figure exactly">Copy link</button>
+              <button type="button" class="sb-button" data-action="embed"
+                title="Copy an iframe that shows this figure, in this state, in another page">Copy embed code</button>
+            </div>
+          </div>
+          <span class="sb-copy-status" role="status"></span>
         </div>
       </div>
       <div class="sb-notices"></div>
@@ -152,9 +164,7 @@ export abstract class WidgetElement extends HTMLElement {
     this.noticeArea = root.querySelector('.sb-notices');
     this.presentButton = root.querySelector('[data-action="present"]');
     this.presentButton?.addEventListener('click', () => this.setPresenting(!this.isPresenting()));
-    root
-      .querySelector('[data-action="link"]')
-      ?.addEventListener('click', () => void this.copyLink());
+    this.buildCopyMenu(root);
 
     const controls = root.querySelector<HTMLFormElement>('.sb-controls');
     if (controls) {
@@ -302,13 +312,77 @@ export abstract class WidgetElement extends HTMLElement {
     writeWidgetState(this.widgetId, this.stateEntries());
   }
 
-  private async copyLink(): Promise<void> {
-    const link = widgetLink(this.widgetId, this.stateEntries());
+  /**
+   * The Copy menu: a disclosure button that opens two real buttons (the link and
+   * the embed code). Esc or a click elsewhere closes it and focus returns to the
+   * button; the result is announced in a status region that is always present.
+   */
+  private buildCopyMenu(root: HTMLElement): void {
+    const toggle = root.querySelector<HTMLButtonElement>('[data-action="copy-menu"]');
+    const menu = root.querySelector<HTMLElement>('.sb-copy-menu');
+    if (!toggle || !menu) return;
+    const onOutside = (event: Event): void => {
+      if (!(event.target instanceof Node) || !menu.parentElement?.contains(event.target))
+        close(false);
+    };
+    const close = (refocus: boolean): void => {
+      menu.hidden = true;
+      toggle.setAttribute('aria-expanded', 'false');
+      document.removeEventListener('pointerdown', onOutside, true);
+      if (refocus) toggle.focus();
+    };
+    toggle.addEventListener('click', () => {
+      if (!menu.hidden) return close(false);
+      menu.hidden = false;
+      toggle.setAttribute('aria-expanded', 'true');
+      document.addEventListener('pointerdown', onOutside, true);
+      menu.querySelector<HTMLButtonElement>('button')?.focus();
+    });
+    menu.addEventListener('keydown', (event) => {
+      if (event.key !== 'Escape') return;
+      // The menu takes Esc before presentation mode does.
+      event.preventDefault();
+      event.stopPropagation();
+      close(true);
+    });
+    menu.querySelector('[data-action="link"]')?.addEventListener('click', () => {
+      close(true);
+      void this.copyText(this.shareLink(), 'link');
+    });
+    menu.querySelector('[data-action="embed"]')?.addEventListener('click', () => {
+      close(true);
+      void this.copyText(this.embedCode(), 'embed code');
+    });
+  }
+
+  /** The link that restores this figure on this page (relative to its attributes). */
+  shareLink(): string {
+    return widgetLink(this.widgetId, this.stateEntries());
+  }
+
+  /** The `<iframe>` that shows this figure, in its current state, on its embed page. */
+  embedCode(): string {
+    const entries = [...new URLSearchParams(encodeParameters(this.entry.parameters, this.values))];
+    const src = embedUrl(siteUrl(''), this.entry.name, this.widgetId, entries);
+    const height = this.isPresenting() ? 0 : (this.root?.getBoundingClientRect().height ?? 0);
+    return iframeSnippet(src, `${this.entry.title} — Scatterbook`, embedHeight(height || 600));
+  }
+
+  private copyStatusTimer: ReturnType<typeof setTimeout> | null = null;
+
+  private async copyText(text: string, what: 'link' | 'embed code'): Promise<void> {
+    const status = this.root?.querySelector<HTMLElement>('.sb-copy-status');
     try {
-      await navigator.clipboard.writeText(link);
-      this.showNotice('link', 'info', 'Link copied: it restores this figure exactly.', 4000);
+      await navigator.clipboard.writeText(text);
+      this.clearNotice('copy');
+      if (status) {
+        status.textContent = `Copied ${what}`;
+        if (this.copyStatusTimer) clearTimeout(this.copyStatusTimer);
+        this.copyStatusTimer = setTimeout(() => (status.textContent = ''), 4000);
+      }
     } catch {
-      this.showNotice('link', 'info', `Copy this link: ${link}`);
+      // No clipboard (permission refused, insecure context): show the text to copy by hand.
+      this.showNotice('copy', 'info', `Copy this ${what}: ${text}`);
     }
   }
 
