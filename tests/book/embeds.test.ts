@@ -8,6 +8,7 @@ import { buildBook } from '../../src/book/build/generate.ts';
 import { planEmbeds, renderEmbedPage, widgetInstances } from '../../src/book/build/embeds.ts';
 import type { ChapterSource } from '../../src/book/build/chapters.ts';
 import {
+  fullState,
   embedHeight,
   embedInstanceId,
   embedUrl,
@@ -97,9 +98,26 @@ describe('the iframe snippet', () => {
     const snippet = iframeSnippet(url, 'Beer\'s law "quoted" <b>', embedHeight(603));
     expect(snippet).toBe(
       `<iframe src="${url.replace(/&/g, '&amp;')}" title="Beer's law &quot;quoted&quot; &lt;b&gt;" ` +
-        'width="100%" height="650" loading="lazy" allow="fullscreen" style="border: 0; max-width: 100%"></iframe>',
+        'width="100%" height="680" loading="lazy" allow="fullscreen" style="border: 0; max-width: 100%"></iframe>',
     );
     expect(embedHeight(0)).toBe(320);
+    // The state in the snippet names every parameter, defaults included.
+    const lobe = WIDGET_CATALOG['hg-lobe'];
+    expect(
+      fullState(lobe?.parameters ?? [], {
+        g: 0.6,
+        compare: 'isotropic',
+        scale: 'linear',
+        samples: 16,
+        seed: 1,
+      }),
+    ).toEqual([
+      ['g', '0.6'],
+      ['compare', 'isotropic'],
+      ['scale', 'linear'],
+      ['samples', '16'],
+      ['seed', '1'],
+    ]);
     expect(embedHeight(5000)).toBe(2000);
   });
 });

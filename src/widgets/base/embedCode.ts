@@ -5,6 +5,25 @@
 // embed page starts from (a deck slide's widget has attributes of its own).
 
 import { STATE_VERSION } from './urlState.ts';
+import { encodeParameters, type Parameter, type ParameterValues } from '../parameters.ts';
+
+/**
+ * Every parameter's value as hash entries, formatted as the deep links format them.
+ * encodeParameters leaves out values equal to the schema's default; here nothing is
+ * left out (no number equals NaN and no choice is empty), because the embed page's
+ * instance may have attributes other than the defaults.
+ */
+export function fullState(
+  parameters: readonly Parameter[],
+  values: ParameterValues,
+): [string, string][] {
+  const keepAll = parameters.map((parameter): Parameter =>
+    parameter.kind === 'number'
+      ? { ...parameter, default: Number.NaN }
+      : { ...parameter, default: '' },
+  );
+  return [...new URLSearchParams(encodeParameters(keepAll, values))];
+}
 
 /** Instance ids as chapter pages number them (`hg-lobe-2`); other ids (a deck slide's) become `<widget>-1`. */
 export function embedInstanceId(widget: string, widgetId: string): string {
@@ -45,11 +64,12 @@ function escapeAttribute(text: string): string {
 /**
  * The frame's height in CSS pixels: the widget's own height where it is shown now,
  * plus the embed page's margins and its one-line link to the chapter, rounded up
- * to 10 px and kept between 320 and 2000.
+ * to 10 px and kept between 320 and 2000. A frame narrower than the chapter's column
+ * wraps text onto more lines, so the widget gets 5 % to spare.
  */
 export function embedHeight(widgetHeight: number): number {
   const pageChrome = 16 + 28; // body padding (2 × 0.5rem) and the "Open in the book" line
-  const height = Math.ceil((widgetHeight + pageChrome) / 10) * 10;
+  const height = Math.ceil((1.05 * widgetHeight + pageChrome) / 10) * 10;
   return Number.isFinite(height) ? Math.min(Math.max(height, 320), 2000) : 640;
 }
 

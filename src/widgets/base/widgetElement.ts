@@ -19,7 +19,7 @@ import {
   widgetLink,
   writeWidgetState,
 } from './urlState.ts';
-import { embedHeight, embedUrl, iframeSnippet } from './embedCode.ts';
+import { embedHeight, embedUrl, fullState, iframeSnippet } from './embedCode.ts';
 import { siteUrl } from './siteUrl.ts';
 
 /** Hash keys a widget understands besides its parameters. */
@@ -362,7 +362,7 @@ export abstract class WidgetElement extends HTMLElement {
 
   /** The `<iframe>` that shows this figure, in its current state, on its embed page. */
   embedCode(): string {
-    const entries = [...new URLSearchParams(encodeParameters(this.entry.parameters, this.values))];
+    const entries = fullState(this.entry.parameters, this.values);
     const src = embedUrl(siteUrl(''), this.entry.name, this.widgetId, entries);
     const height = this.isPresenting() ? 0 : (this.root?.getBoundingClientRect().height ?? 0);
     return iframeSnippet(src, `${this.entry.title} — Scatterbook`, embedHeight(height || 600));
