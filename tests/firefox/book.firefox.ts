@@ -4,7 +4,7 @@
 // puppeteer-core over WebDriver BiDi (scripts/firefox.mjs), one browser for all tests
 // and one tab at a time, each page opened in sequence.
 //
-//   every page (home, each chapter, the appendix, the deck) loads with no console error;
+//   every page (home, each chapter, the appendix pages, each embed, the deck) loads with no console error;
 //   every widget draws on WebGPU: no fallback notice, a non-blank canvas;
 //   a deep link restores a widget in presentation mode, and F / Esc toggle it;
 //   the Beer's-law exercise runs its public checks in the page;
@@ -18,7 +18,7 @@
 // The file name keeps it out of Vitest's and Playwright's globs.
 import assert from 'node:assert/strict';
 import { spawn, type ChildProcess } from 'node:child_process';
-import { mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { after, before, describe, it, type TestContext } from 'node:test';
@@ -55,12 +55,20 @@ function builtPages(): PageSpec[] {
     .filter((name) => name.endsWith('.html'))
     .sort()
     .map((name) => `chapters/${name}`);
-  const appendix = readdirSync(join(DIST, 'appendix'))
-    .filter((name) => name.endsWith('.html'))
-    .sort()
-    .map((name) => `appendix/${name}`);
-  return ['index.html', ...chapters, ...appendix].map((file) => {
-    const html = readFileSync(join(DIST, file), 'utf8');
+  const folder = (name: string): string[] =>
+    existsSync(join(DIST, name))
+      ? readdirSync(join(DIST, name))
+          .filter((file) => file.endsWith('.html'))
+          .sort()
+          .map((file) => `${name}/${file}`)
+      : [];
+  // The embeddable figures (embed/<widget>.html) are pages too.
+  return ['index.html', ...chapters, ...folder('appendix'), ...folder('embed')].map((file) => {
+    // A <template> holds inert copies (an embed's other instances), not live widgets.
+    const html = readFileSync(join(DIST, file), 'utf8').replace(
+      /<template[\s\S]*?<\/template>/g,
+      '',
+    );
     const seen = new Map<string, number>();
     const widgets = [...html.matchAll(/<(sb-[a-z-]+)\b([^>]*)>/g)].map((match) => {
       const tag = match[1] ?? '';
@@ -253,10 +261,11 @@ for (const spec of pages) {
       await current?.page.close();
     });
 
-    it('loads with its title and typeset math', async () => {
+    it('loads, with its MathML laid out once parsed', async () => {
       current = await open(`/${spec.file}`);
-      const heading = await current.page.$('main h1');
-      assert.ok(heading, 'the page has a heading');
+      // An embed is the figure alone; every other page has a heading.
+      const heading = await current.page.$(spec.file.startsWith('embed/') ? 'main' : 'main h1');
+      assert.ok(heading, 'the page has its main content');
       const raw = readFileSync(join(DIST, spec.file), 'utf8');
       if (raw.includes('class="katex')) {
         // The MathML is hidden only while the page is parsed (src/book/build/pages.ts).
