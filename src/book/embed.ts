@@ -40,7 +40,9 @@ function chooseInstance(): void {
     .map((id) => templates.find((template) => template.dataset['instance'] === id))
     .find((template) => template !== undefined);
   const main = document.querySelector('main.embed-main');
-  if (!chosen || !main) return;
+  // The page already shows the first instance; replacing it by its own copy would only
+  // detach the element that is there.
+  if (!chosen || !main || main.querySelector(`[id="${chosen.dataset['instance'] ?? ''}"]`)) return;
   main.replaceChildren(chosen.content.cloneNode(true));
 }
 
