@@ -33,13 +33,24 @@ export const GUARD_FLAG = 'sbg_budgetExceeded';
  */
 export const MAX_SUBMISSION_BYTES = 64 * 1024;
 
+/**
+ * The most tokens the graded code may reach once every call of the student's own
+ * functions is inlined (what the GPU compilers do: SwiftShader's SPIR-V optimiser
+ * inlines every call). Twice what 64 KiB of straight-line code can hold, so only a
+ * call tree that multiplies code is refused: 40 lines of `fn e_k(x) { return
+ * e_{k-1}(e_{k-1}(x)); }` inline to 2^40 calls and crashed the grader's compiler
+ * (SIGSEGV after "ID overflow") or ran past its wall-clock limit.
+ */
+export const MAX_INLINED_TOKENS = 1 << 17;
+
 /** What a submission may contain, in the words the page and the README use. */
 export const SUBMISSION_RULES =
   `One WGSL file of at most ${MAX_SUBMISSION_BYTES / 1024} KiB: your function and whatever it ` +
   'needs (other functions, structs, module-scope const and var<private>), with no ' +
   'bindings (@group, @binding), entry points (@compute, @vertex, @fragment), ' +
   'enable/requires/diagnostic directives, override declarations or names starting with ' +
-  `${RESERVED_PREFIX}; the grader refuses those before compiling.`;
+  `${RESERVED_PREFIX}, and no functions that call each other so often that, inlined, ` +
+  `they exceed ${MAX_INLINED_TOKENS} tokens; the grader refuses those before compiling.`;
 
 /** Bytes of `text` in UTF-8 (lone surrogates count 3, as TextEncoder writes U+FFFD). */
 export function utf8Length(text: string): number {
@@ -571,6 +582,84 @@ export function paramTypeText(type: ParamType): string {
   return normaliseType(type);
 }
 
+/**
+ * The largest inlined size of any function, in tokens: its own body's tokens plus,
+ * for every call of another function of the submission, that function's inlined size.
+ * Linear in the tokens: one pass assigns tokens and calls to function bodies, then a
+ * memoised, iterative walk of the call graph (a cycle, which WGSL forbids and the
+ * compiler reports, adds nothing). Sums saturate at Infinity, never overflow.
+ */
+export function inlinedSize(tokens: readonly Token[]): { name: string; tokens: number } | null {
+  // Function names and where each body opens: `fn name ( … ) [-> type] {`.
+  const index = new Map<string, number>();
+  const names: string[] = [];
+  const own: number[] = [];
+  const calls: string[][] = [];
+  let current = -1;
+  let depth = 0;
+  let pendingName: string | null = null;
+  for (let k = 0; k < tokens.length; k++) {
+    const token = tokens[k] as Token;
+    if (
+      depth === 0 &&
+      token.kind === 'ident' &&
+      token.text === 'fn' &&
+      tokens[k + 1]?.kind === 'ident'
+    ) {
+      pendingName = (tokens[k + 1] as Token).text;
+    }
+    if (token.text === '{') {
+      if (depth === 0 && pendingName !== null) {
+        current = names.length;
+        if (!index.has(pendingName)) index.set(pendingName, current);
+        names.push(pendingName);
+        own.push(0);
+        calls.push([]);
+        pendingName = null;
+      }
+      depth++;
+    } else if (token.text === '}') {
+      depth = Math.max(0, depth - 1);
+      if (depth === 0) current = -1;
+    } else if (token.text === ';' && depth === 0) pendingName = null;
+    if (current >= 0) {
+      own[current] = (own[current] as number) + 1;
+      if (token.kind === 'ident' && tokens[k + 1]?.text === '(')
+        (calls[current] as string[]).push(token.text);
+    }
+  }
+  if (names.length === 0) return null;
+  const size = new Array<number>(names.length).fill(-1); // -1 unvisited, -2 on the stack
+  const stack: { f: number; next: number; total: number }[] = [];
+  for (let root = 0; root < names.length; root++) {
+    if (size[root] !== -1) continue;
+    size[root] = -2;
+    stack.push({ f: root, next: 0, total: own[root] as number });
+    while (stack.length > 0) {
+      const top = stack[stack.length - 1] as { f: number; next: number; total: number };
+      const list = calls[top.f] as string[];
+      if (top.next < list.length) {
+        const callee = index.get(list[top.next++] as string);
+        if (callee === undefined) continue;
+        const known = size[callee] as number;
+        if (known >= 0) top.total += known;
+        else if (known === -1) {
+          size[callee] = -2;
+          stack.push({ f: callee, next: 0, total: own[callee] as number });
+          // The callee's size is added when it is finished (below).
+          top.next--;
+        }
+        continue;
+      }
+      size[top.f] = top.total;
+      stack.pop();
+    }
+  }
+  let best = 0;
+  for (let f = 1; f < names.length; f++) if ((size[f] as number) > (size[best] as number)) best = f;
+  return { name: names[best] as string, tokens: size[best] as number };
+}
+
 /** A submission ready to compile, or the reason it is refused. */
 export type PreparedSource =
   | {
@@ -611,6 +700,20 @@ export function prepareSource(
   }
   refusals.sort((a, b) => a.line - b.line || a.column - b.column);
   if (refusals.length > 0) return { ok: false, message: refusalMessage(refusals) };
+  const inlined = inlinedSize(tokens);
+  if (inlined && inlined.tokens > MAX_INLINED_TOKENS) {
+    const amount = Number.isFinite(inlined.tokens)
+      ? `about ${inlined.tokens.toPrecision(2)}`
+      : 'more than 10^308';
+    return {
+      ok: false,
+      message:
+        'The grader refused your submission before compiling it: the GPU compiler inlines ' +
+        `every function call, and with its calls \`${inlined.name}\` inlines to ${amount} ` +
+        `tokens (at most ${MAX_INLINED_TOKENS} are accepted). Call fewer functions per ` +
+        'function, or use a loop instead of repeated calls.',
+    };
+  }
   return {
     ok: true,
     text,
