@@ -4,6 +4,7 @@
 import { setupThemeToggle } from './theme.ts';
 import { setupQuizzes } from './quiz.ts';
 import { setupDeck } from './deck.ts';
+import { setupPrint } from './print.ts';
 import { setupOfflineReading } from './offline.ts';
 import { WIDGET_LOADERS } from '../widgets/loaders.ts';
 
@@ -59,6 +60,7 @@ window.addEventListener('resize', () => {
 });
 setupQuizzes();
 setupDeck();
+setupPrint();
 void loadWidgets();
 // The service worker that saves the book for offline reading, and its status line.
 void setupOfflineReading().catch((error: unknown) => console.error('offline reading:', error));

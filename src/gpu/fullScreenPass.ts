@@ -5,6 +5,7 @@
 import type { GpuContext } from './device.ts';
 import { withErrorScopes } from './errors.ts';
 import type { GpuTimer } from './timing.ts';
+import { keepForPrint } from '../widgets/base/print.ts';
 
 export interface FullScreenPassOptions {
   /** Names the pass in error messages, e.g. "beer-law". */
@@ -23,6 +24,9 @@ export class FullScreenPass {
   private readonly pipeline: GPURenderPipeline;
   private readonly uniform: GPUBuffer;
   private readonly bindGroup: GPUBindGroup;
+  /** The last frame's uniforms, to draw it again for printing (widgets/base/print.ts). */
+  private lastUniforms: Uint8Array<ArrayBuffer> | null = null;
+  private destroyed = false;
 
   private constructor(
     private readonly gpu: GpuContext,
@@ -68,7 +72,9 @@ export class FullScreenPass {
       });
       return { context, pipeline, uniform, bindGroup };
     });
-    return new FullScreenPass(gpu, options.label, parts);
+    const pass = new FullScreenPass(gpu, options.label, parts);
+    keepForPrint(canvas, () => pass.redrawLast());
+    return pass;
   }
 
   /**
@@ -83,40 +89,55 @@ export class FullScreenPass {
   ): Promise<void> {
     const passes = Math.max(1, Math.round(timing?.passes ?? 1));
     const { device } = this.gpu;
-    await withErrorScopes(device, `${this.label} draw`, () => {
-      device.queue.writeBuffer(
-        this.uniform,
-        0,
-        uniforms.buffer,
-        uniforms.byteOffset,
-        uniforms.byteLength,
-      );
-      const encoder = device.createCommandEncoder();
-      const view = this.context.getCurrentTexture().createView();
-      for (let k = 0; k < passes; k++) {
-        const timestampWrites = timing?.timer.renderPassTimestamps(k === 0, k === passes - 1);
-        const pass = encoder.beginRenderPass({
-          colorAttachments: [
-            {
-              view,
-              loadOp: 'clear',
-              storeOp: 'store',
-              clearValue: { r: 0, g: 0, b: 0, a: 1 },
-            },
-          ],
-          ...(timestampWrites ? { timestampWrites } : {}),
-        });
-        pass.setPipeline(this.pipeline);
-        pass.setBindGroup(0, this.bindGroup);
-        pass.draw(3);
-        pass.end();
-      }
-      timing?.timer.resolve(encoder);
-      device.queue.submit([encoder.finish()]);
-    });
+    this.lastUniforms = new Uint8Array(
+      uniforms.buffer,
+      uniforms.byteOffset,
+      uniforms.byteLength,
+    ).slice();
+    await withErrorScopes(device, `${this.label} draw`, () => this.encode(passes, timing?.timer));
+  }
+
+  /**
+   * Draws the last frame again, synchronously: a presented WebGPU canvas no longer
+   * holds its picture, so printing re-draws it and copies the canvas in the same task.
+   */
+  redrawLast(): void {
+    if (this.destroyed || !this.lastUniforms) return;
+    this.encode(1);
+  }
+
+  /** Encodes and submits `passes` draws of the last uniforms (all synchronous). */
+  private encode(passes: number, timer?: GpuTimer): void {
+    const { device } = this.gpu;
+    const uniforms = this.lastUniforms;
+    if (uniforms)
+      device.queue.writeBuffer(this.uniform, 0, uniforms.buffer, 0, uniforms.byteLength);
+    const encoder = device.createCommandEncoder();
+    const view = this.context.getCurrentTexture().createView();
+    for (let k = 0; k < passes; k++) {
+      const timestampWrites = timer?.renderPassTimestamps(k === 0, k === passes - 1);
+      const pass = encoder.beginRenderPass({
+        colorAttachments: [
+          {
+            view,
+            loadOp: 'clear',
+            storeOp: 'store',
+            clearValue: { r: 0, g: 0, b: 0, a: 1 },
+          },
+        ],
+        ...(timestampWrites ? { timestampWrites } : {}),
+      });
+      pass.setPipeline(this.pipeline);
+      pass.setBindGroup(0, this.bindGroup);
+      pass.draw(3);
+      pass.end();
+    }
+    timer?.resolve(encoder);
+    device.queue.submit([encoder.finish()]);
   }
 
   destroy(): void {
+    this.destroyed = true;
     this.uniform.destroy();
     this.context.unconfigure();
   }

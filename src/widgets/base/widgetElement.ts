@@ -19,6 +19,7 @@ import {
   widgetLink,
   writeWidgetState,
 } from './urlState.ts';
+import { snapshotCanvases } from './print.ts';
 import { embedHeight, embedUrl, fullState, iframeSnippet } from './embedCode.ts';
 import { siteUrl } from './siteUrl.ts';
 
@@ -33,6 +34,32 @@ export interface Preset {
 export type NoticeKind = 'info' | 'warning' | 'error';
 
 let instanceCounter = 0;
+
+/** The widgets on the page, for printing (see print.ts). */
+const connectedWidgets = new Set<WidgetElement>();
+
+/**
+ * Copies every widget's current picture for printing. `beforeprint` cannot wait, so
+ * a figure that has never drawn (it was never on screen) prints a note instead; the
+ * book's print command (src/book/print.ts) draws them all first (renderAllForPrint).
+ */
+export function snapshotAllForPrint(): void {
+  for (const widget of connectedWidgets) widget.snapshotForPrint();
+}
+
+/** Draws every widget on the page, one after another, then copies them for printing. */
+export async function renderAllForPrint(
+  progress?: (done: number, total: number) => void,
+): Promise<void> {
+  const widgets = [...connectedWidgets];
+  for (const [index, widget] of widgets.entries()) {
+    progress?.(index, widgets.length);
+    await widget.renderForPrint();
+  }
+  progress?.(widgets.length, widgets.length);
+}
+
+if (typeof window !== 'undefined') window.addEventListener('beforeprint', snapshotAllForPrint);
 
 export abstract class WidgetElement extends HTMLElement {
   /** The widget's schema; set by each subclass. */
@@ -62,6 +89,7 @@ export abstract class WidgetElement extends HTMLElement {
   protected abstract render(): Promise<void> | void;
 
   connectedCallback(): void {
+    connectedWidgets.add(this);
     if (this.root) return;
     instanceCounter += 1;
     const sameKind = [...document.querySelectorAll(this.localName)].indexOf(this) + 1;
@@ -97,6 +125,7 @@ export abstract class WidgetElement extends HTMLElement {
   }
 
   disconnectedCallback(): void {
+    connectedWidgets.delete(this);
     this.observer?.disconnect();
     this.observer = null;
   }
@@ -384,6 +413,59 @@ export abstract class WidgetElement extends HTMLElement {
       // No clipboard (permission refused, insecure context): show the text to copy by hand.
       this.showNotice('copy', 'info', `Copy this ${what}: ${text}`);
     }
+  }
+
+  /**
+   * Prepares the printed figure: its canvases copied as images (print.ts), its
+   * settings written out (the controls are not printed), and a note if it has not
+   * drawn yet.
+   */
+  snapshotForPrint(): void {
+    if (!this.root) return;
+    const drawn = Number(this.dataset['rendered'] ?? '0') > 0;
+    if (drawn) snapshotCanvases(this.root);
+    this.root.classList.toggle('sb-print-undrawn', !drawn);
+    let settings = this.root.querySelector<HTMLElement>('.sb-print-settings');
+    if (!settings) {
+      settings = document.createElement('p');
+      settings.className = 'sb-print-settings';
+      this.root.querySelector('.sb-widget-header')?.after(settings);
+    }
+    settings.textContent = drawn
+      ? `Settings: ${this.settingsText()}`
+      : `This figure had not been drawn when the page was printed (it draws when it scrolls into view). ` +
+        `Settings: ${this.settingsText()}`;
+  }
+
+  /** Draws now, visible or not, then copies the picture for printing. */
+  async renderForPrint(): Promise<void> {
+    try {
+      await this.redraw();
+      await this.drawForPrint();
+    } finally {
+      this.snapshotForPrint();
+    }
+  }
+
+  /**
+   * Draws the parts of the figure that draw on their own schedule (only while on
+   * screen, like hg-lobe's 3D view), so that a figure printed before it was ever
+   * seen prints them too. Most widgets draw everything in render().
+   */
+  protected async drawForPrint(): Promise<void> {}
+
+  /** The parameters as a reader would set them: "Thickness d = 2 m · Profile: Layered". */
+  private settingsText(): string {
+    return this.entry.parameters
+      .map((parameter) => {
+        const value = this.values[parameter.name];
+        if (parameter.kind === 'choice') {
+          const choice = parameter.choices.find((c) => c.value === value);
+          return `${parameter.label}: ${choice?.label ?? String(value)}`;
+        }
+        return `${parameter.label} = ${String(value)}${parameter.unit ? ` ${parameter.unit}` : ''}`;
+      })
+      .join(' · ');
   }
 
   isPresenting(): boolean {

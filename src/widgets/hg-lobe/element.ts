@@ -137,6 +137,11 @@ export class HgLobeElement extends WidgetElement {
     return canvas;
   }
 
+  /** The 3D view draws on its own schedule, while on screen: printing draws it too. */
+  protected override async drawForPrint(): Promise<void> {
+    await this.view?.drawNow();
+  }
+
   protected buildReadout(readout: HTMLElement): void {
     this.readouts = new ReadoutList(readout, READOUT_ROWS);
     this.readouts.set('sweep', 'run the sweep');

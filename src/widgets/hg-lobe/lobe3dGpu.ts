@@ -8,6 +8,7 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
 import { ARROW_VERTEX_COUNT, LOBE_VERTEX_COUNT, VIEW_BYTES, WIRE_VERTEX_COUNT } from './lobe3d.ts';
+import { keepForPrint } from '../base/print.ts';
 
 export const LOBE_3D_KERNEL = 'kernels/hg-lobe-3d.wesl';
 export const LOBE_3D_SAMPLES = 4;
@@ -196,11 +197,22 @@ export class HgLobe3dGpu {
   private context: GPUCanvasContext | null = null;
   private targets: Targets | null = null;
   private readonly format = navigator.gpu.getPreferredCanvasFormat();
+  /** The last frame, to draw it again for printing (widgets/base/print.ts). */
+  private last: {
+    renderer: LobeRenderer;
+    view: Uint32Array<ArrayBuffer>;
+    withCompare: boolean;
+  } | null = null;
 
   constructor(
     private readonly gpu: GpuContext,
     private readonly canvas: HTMLCanvasElement,
-  ) {}
+  ) {
+    keepForPrint(canvas, () => {
+      if (this.last && this.context)
+        this.encode(this.last.renderer, this.context, this.last.view, this.last.withCompare);
+    });
+  }
 
   private pipelines(): Promise<LobeRenderer> {
     this.renderer ??= linkLibraryKernel(SHADER_LIBRARY, LOBE_3D_KERNEL).then((code) =>
@@ -245,24 +257,36 @@ export class HgLobe3dGpu {
       this.context = context;
     }
     const context = this.context;
-    await withErrorScopes(device, 'hg-lobe 3D draw', () => {
-      const targets = this.targetsFor(this.canvas.width, this.canvas.height);
-      const encoder = device.createCommandEncoder();
-      renderer.encode(
-        encoder,
-        {
-          color: targets.color.createView(),
-          resolve: context.getCurrentTexture().createView(),
-          depth: targets.depth.createView(),
-        },
-        view,
-        withCompare,
-      );
-      device.queue.submit([encoder.finish()]);
-    });
+    this.last = { renderer, view: view.slice(), withCompare };
+    await withErrorScopes(device, 'hg-lobe 3D draw', () =>
+      this.encode(renderer, context, view, withCompare),
+    );
+  }
+
+  /** Encodes and submits one frame (synchronous, so printing can copy it at once). */
+  private encode(
+    renderer: LobeRenderer,
+    context: GPUCanvasContext,
+    view: Uint32Array<ArrayBuffer>,
+    withCompare: boolean,
+  ): void {
+    const targets = this.targetsFor(this.canvas.width, this.canvas.height);
+    const encoder = this.gpu.device.createCommandEncoder();
+    renderer.encode(
+      encoder,
+      {
+        color: targets.color.createView(),
+        resolve: context.getCurrentTexture().createView(),
+        depth: targets.depth.createView(),
+      },
+      view,
+      withCompare,
+    );
+    this.gpu.device.queue.submit([encoder.finish()]);
   }
 
   destroy(): void {
+    this.last = null;
     void this.renderer?.then((renderer) => renderer.destroy());
     this.targets?.color.destroy();
     this.targets?.depth.destroy();

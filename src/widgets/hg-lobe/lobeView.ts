@@ -222,6 +222,16 @@ export class LobeView {
     });
   }
 
+  /**
+   * Draws now, on screen or not, and waits for it (printing: a view that never
+   * scrolled into view has no picture to copy yet).
+   */
+  async drawNow(): Promise<void> {
+    if (!this.scene || this.mode === 'none') return;
+    while (this.drawing) await new Promise((resolve) => requestAnimationFrame(resolve));
+    await this.draw();
+  }
+
   private async draw(): Promise<void> {
     const scene = this.scene;
     if (!scene) return;
