@@ -16,7 +16,8 @@ const normalize = (a: Vec3): Vec3 => {
 /** L = E/(π sin²θmax) (the cone integral of L cos θ is E). */
 export function sunRadiance(irradiance: number, sinThetaMax: number): number {
   const s = Math.max(sinThetaMax, 1e-6);
-  return irradiance / (Math.PI * s * s);
+  // E < 0 counts as 0 and the quotient saturates at the largest f32, as in the shader.
+  return Math.min(Math.max(irradiance, 0) / (Math.PI * s * s), 3.4028234663852886e38);
 }
 
 /** Ω = 2π(1 − cos θmax). */
@@ -102,6 +103,8 @@ export function photonCellIndex(
 
 /** 1/((4/3)πr³) inside the gather sphere, 0 outside. */
 export function photonKernel(distanceSquared: number, radius: number): number {
-  if (!(radius > 0) || !(distanceSquared < radius * radius)) return 0;
-  return 3 / (4 * Math.PI * radius ** 3);
+  // r² below the smallest normal f32 has no volume, as in the shader (a GPU may flush r² to 0).
+  if (!(radius > 0) || radius * radius < 2 ** -126 || !(distanceSquared < radius * radius)) return 0;
+  // Saturates at the largest f32 like the shader (r³ leaves the f32 range below r ≈ 2.3e-13 m).
+  return Math.min(3 / (4 * Math.PI * radius ** 3), 3.4028234663852886e38);
 }

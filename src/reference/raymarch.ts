@@ -41,6 +41,18 @@ export function oneMinusExpOverX(x: number): number {
   return y === 0 ? 1 : -Math.expm1(-y) / y;
 }
 
+/**
+ * ∫₀^L e^{−ks} ds = (1 − e^{−kL})/k for k ≥ 0 (1/m) and L ≥ 0 (m), negative inputs counted as 0;
+ * L at k = 0. With expm1, so no cancellation and no product that depends on the unit of length;
+ * capped at the largest f32 like the shader's saturating quotient.
+ */
+export function oneMinusExpOverRate(rate: number, length: number): number {
+  const k = Math.max(rate, 0);
+  const l = Math.max(length, 0);
+  if (k === 0) return l;
+  return Math.min(-Math.expm1(-k * l) / k, F32_MAX);
+}
+
 export function marchStepCount(steps: number): number {
   return clamp(steps >>> 0, 1, MARCH_MAX_STEPS);
 }

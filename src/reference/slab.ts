@@ -70,7 +70,8 @@ export function slabDistanceToBoundary(z: number, uz: number, thickness: number)
 
 /** √(x² + y²) without overflow (Math.hypot scales internally). */
 export function slabRadius(x: number, y: number): number {
-  return Math.hypot(x, y);
+  // Saturates at the largest f32, as the shader does (|x|, |y| near it gave Inf).
+  return Math.min(Math.hypot(x, y), 3.4028234663852886e38);
 }
 
 /** One packet (physics.md §7); the expectation of the top weight is R_d, of the bottom weight T_t. */
