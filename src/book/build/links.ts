@@ -20,7 +20,7 @@ export function rootPrefix(pageFile: string): string {
 
 /**
  * The link from `pageFile` (relative to the site root, e.g. `chapters/02-x.html`) to
- * a site path (`/chapters/03-y.html#eq:z`, `/` for the home page). Query and
+ * a site path (`/chapters/03-y.html#phase-functions`, `/` for the home page). Query and
  * fragment are kept; a link to the page itself keeps only them.
  */
 export function relativeLink(pageFile: string, sitePath: string): string {
