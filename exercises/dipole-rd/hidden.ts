@@ -46,7 +46,10 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     ...HIDDEN_TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'dipole ordinary');
-      const cases = Array.from({ length: 5 }, (_, k) => ordinary(r, `material ${k + 1}`));
+      // Many ordinary cases: deterministic cases cost one dispatch, and a submission right
+      // only in part of the domain (the public region) fails a check of k uniform draws unless
+      // all miss the wrong part: (1 − q)^k, 0.001 for q = 25 % at k = 24 (red team, issue 15).
+      const cases = Array.from({ length: 24 }, (_, k) => ordinary(r, `material ${k + 1}`));
       const m = material(r);
       return [...cases, { label: 'r = 0', args: [m.sigmaSPrime, m.sigmaA, m.eta, 0] }];
     },

@@ -24,7 +24,10 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     ...TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'hg-eval ordinary');
-      return Array.from({ length: 8 }, (_, k) => ordinary(r, `case ${k + 1}`));
+      // Many ordinary cases: deterministic cases cost one dispatch, and a submission right
+      // only in part of the domain (the public region) fails a check of k uniform draws unless
+      // all miss the wrong part: (1 − q)^k, 0.001 for q = 25 % at k = 24 (red team, issue 15).
+      return Array.from({ length: 32 }, (_, k) => ordinary(r, `case ${k + 1}`));
     },
   },
   {

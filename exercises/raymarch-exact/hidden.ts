@@ -41,7 +41,10 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     ...TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'raymarch ordinary');
-      return Array.from({ length: 6 }, (_, k) => ray(r, `ray ${k + 1}`, 0.05, 8, 1, 64));
+      // Many ordinary cases: deterministic cases cost one dispatch, and a submission right
+      // only in part of the domain (the public region) fails a check of k uniform draws unless
+      // all miss the wrong part: (1 − q)^k, 0.001 for q = 25 % at k = 24 (red team, issue 15).
+      return Array.from({ length: 24 }, (_, k) => ray(r, `ray ${k + 1}`, 0.05, 8, 1, 64));
     },
   },
   {

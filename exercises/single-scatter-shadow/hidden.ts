@@ -30,7 +30,10 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     ...TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'single-scatter ordinary');
-      return Array.from({ length: 6 }, (_, k) => ordinary(r, `ray ${k + 1}`));
+      // Many ordinary cases: deterministic cases cost one dispatch, and a submission right
+      // only in part of the domain (the public region) fails a check of k uniform draws unless
+      // all miss the wrong part: (1 − q)^k, 0.001 for q = 25 % at k = 24 (red team, issue 15).
+      return Array.from({ length: 24 }, (_, k) => ordinary(r, `ray ${k + 1}`));
     },
   },
   {
