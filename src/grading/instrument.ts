@@ -47,6 +47,7 @@ export const MAX_INLINED_TOKENS = 1 << 17;
 export const SUBMISSION_RULES =
   `One WGSL file of at most ${MAX_SUBMISSION_BYTES / 1024} KiB: your function and whatever it ` +
   'needs (other functions, structs, module-scope const and var<private>), with no ' +
+  'var<workgroup>, ' +
   'bindings (@group, @binding), entry points (@compute, @vertex, @fragment), ' +
   'enable/requires/diagnostic directives, override declarations or names starting with ' +
   `${RESERVED_PREFIX}, and no functions that call each other so often that, inlined, ` +
@@ -312,7 +313,20 @@ export function findRefusals(tokens: readonly Token[], lines: LineIndex): Refusa
       continue;
     }
     const afterAt = tokens[k - 1]?.text === '@';
-    if (token.text.startsWith(RESERVED_PREFIX)) {
+    if (
+      token.text === 'workgroup' &&
+      tokens[k - 1]?.text === '<' &&
+      tokens[k - 2]?.text === 'var'
+    ) {
+      // Workgroup memory is shared by the grader's calls in one workgroup: a result could
+      // then depend on other calls (other cases' arguments, other samples) and on their
+      // order, so grading would neither test the function alone nor be reproducible.
+      at(
+        token,
+        "`var<workgroup>` memory is shared between the grader's calls of your function, so " +
+          'results would depend on other calls; use `var` inside your function or `var<private>`',
+      );
+    } else if (token.text.startsWith(RESERVED_PREFIX)) {
       at(
         token,
         `\`${token.text}\`: names starting with "${RESERVED_PREFIX}" are reserved for the grader; please rename it`,

@@ -72,3 +72,25 @@ describe('the inlined size of a call tree is bounded before compiling', () => {
     expect(performance.now() - started).toBeLessThan(2000);
   });
 });
+
+describe('results depend only on the arguments', () => {
+  it('refuses var<workgroup> however it is spelled, and accepts var<private> and function vars', () => {
+    for (const spelling of [
+      'var<workgroup>',
+      'var < /* c */ workgroup >',
+      'var\n<\nworkgroup\n>',
+    ]) {
+      const prepared = prepareSource(
+        `${spelling} w: array<f32, 4>;\nfn f(x: f32) -> f32 { w[0] = x; return w[1]; }`,
+        100,
+      );
+      expect(prepared.ok).toBe(false);
+      if (!prepared.ok) expect(prepared.message).toMatch(/line \d, column \d+: `var<workgroup>`/);
+    }
+    const allowed = prepareSource(
+      'var<private> p: f32;\nfn f(x: f32) -> f32 { var workgroup = x; p = workgroup; return p; }',
+      100,
+    );
+    expect(allowed.ok).toBe(true);
+  });
+});
