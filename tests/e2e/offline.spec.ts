@@ -13,6 +13,7 @@ import { createServer, type Server } from 'node:http';
 import { existsSync, readdirSync, readFileSync, statSync } from 'node:fs';
 import { extname, join, normalize, relative, resolve } from 'node:path';
 import type { AddressInfo } from 'node:net';
+import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Browser, type BrowserContext, type Page } from '@playwright/test';
 import {
   APPENDIX_PAGE,
@@ -123,6 +124,28 @@ async function newContext(browser: Browser, origin: string): Promise<BrowserCont
     viewport: { width: 1280, height: 900 },
     serviceWorkers: 'allow',
   });
+}
+
+/**
+ * axe-core's WCAG 2.1 AA findings for the status line, in both themes (with
+ * screenshots kept when `shotPath` is given: a screenshot of a page that is not the
+ * front tab waits for a frame that may never come).
+ */
+async function statusLineViolations(page: Page, shotPath?: (name: string) => string) {
+  const found: string[] = [];
+  for (const theme of ['light', 'dark'] as const) {
+    // What the theme button does (src/book/theme.ts): pin the theme on <html>.
+    await page.evaluate((value) => (document.documentElement.dataset['theme'] = value), theme);
+    const line = page.locator('.sb-offline-message').first();
+    await expect(line).toBeVisible();
+    if (shotPath) await page.screenshot({ path: shotPath(`status-line-${theme}.png`) });
+    const results = await new AxeBuilder({ page })
+      .include('.sb-offline-status')
+      .withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa'])
+      .analyze();
+    for (const violation of results.violations) found.push(`${theme}: ${violation.id}`);
+  }
+  return found;
 }
 
 /** Checks that every widget on the page has drawn, without error notices, and not blank. */
@@ -274,6 +297,15 @@ test.describe('offline reading', () => {
     await page.close();
   });
 
+  test('offline: the status line passes the accessibility check in both themes', async () => {
+    const info = test.info();
+    const page = await context.newPage();
+    await page.goto(`${base}index.html`);
+    await expect(page.getByRole('status')).toContainText('Offline — showing the saved copy from');
+    expect(await statusLineViolations(page, (name) => info.outputPath(name))).toEqual([]);
+    await page.close();
+  });
+
   test('offline: a page with a query and a hash opens from the saved copy', async () => {
     const page = await context.newPage();
     const chapter = pages.find((p) => p.slug.startsWith('02-'));
@@ -341,6 +373,7 @@ test.describe('updates', () => {
         'A new version of the book is available',
       );
 
+      expect(await statusLineViolations(first)).toEqual([]);
       // Reload by keyboard: the waiting worker takes over and the page reloads from it.
       const button = notice.getByRole('button', { name: 'Reload' });
       await button.focus();
