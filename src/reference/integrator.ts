@@ -178,7 +178,9 @@ export function maxComponent(v: readonly number[]): number {
 }
 
 export function averageComponent(v: readonly number[]): number {
-  return (v[0]! + v[1]! + v[2]!) / 3;
+  // Finite like the shader's: the mean of f32 channels saturates below the largest f32.
+  const mean = (v[0]! + v[1]! + v[2]!) / 3;
+  return Math.min(Math.max(mean, -3.4028216409684243e38), 3.4028216409684243e38);
 }
 
 export function sceneHeader(scene: SceneData): [number, number, number, number] {

@@ -12,6 +12,7 @@
 import { describeShaderFunction } from '../support/shaderHarness.ts';
 import { exponentialDifferenceOverRate } from '../../src/reference/dipole.ts';
 import {
+  averageComponent,
   sampleTruncatedExponential,
   truncatedExponentialPdf,
 } from '../../src/reference/integrator.ts';
@@ -250,5 +251,32 @@ describeShaderFunction({
     },
     { name: 'd² = 0, r = 1e-20: r² below the normal range, 0', args: [0, 1e-20], expected: 0 },
     { name: 'd² = ½, r = 1: 3/(4π)', args: [0.5, 1], expected: 3 / (4 * Math.PI) },
+  ],
+});
+
+describeShaderFunction({
+  module: 'integrator',
+  fn: 'averageComponent',
+  args: ['f32', 'f32', 'f32'],
+  result: 'f32',
+  wrapper: {
+    wgsl: 'fn caseUnderTest(x: f32, y: f32, z: f32) -> f32 {\n  return averageComponent(vec3f(x, y, z));\n}',
+    imports: ['averageComponent'],
+  },
+  twin: (x: number, y: number, z: number) => averageComponent([x, y, z]),
+  tolerance: { relative: 2e-6, reason: 'quarters, a sum of three and 4/3 (a few ULP)' },
+  cases: [
+    {
+      name: 'all channels F32_MAX: finite, ≈ F32_MAX (was Inf)',
+      args: [F32_MAX, F32_MAX, F32_MAX],
+      expected: F32_MAX,
+    },
+    {
+      name: '−F32_MAX thrice: ≈ −F32_MAX (was −Inf)',
+      args: [-F32_MAX, -F32_MAX, -F32_MAX],
+      expected: -F32_MAX,
+    },
+    { name: '(1, 2, 3): 2', args: [1, 2, 3], expected: 2 },
+    { name: '(F32_MAX, −F32_MAX, 3): 1', args: [F32_MAX, -F32_MAX, 3], expected: 1 },
   ],
 });

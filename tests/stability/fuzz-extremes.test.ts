@@ -124,6 +124,11 @@ const TARGETS: readonly FuzzTarget[] = [
     kinds: ['any', 'any', 'any', 'any'],
     range: unitInterval,
   },
+  {
+    name: 'integrator.averageComponent',
+    kinds: ['any', 'any', 'any'],
+    range: () => [-F32_MAX, F32_MAX],
+  },
   { name: 'dipole.fresnelDiffuseReflectanceFit', kinds: ['eta'] },
   { name: 'dipole.dipoleBoundary', kinds: ['eta'], range: nonNegative },
   { name: 'dipole.dipoleDistance', kinds: ['any', 'any'], range: nonNegative },
