@@ -120,3 +120,21 @@ describe('import lines are found in linear time', () => {
     expect(out.slice(3)).toEqual(lines.slice(3));
   });
 });
+
+describe('every regex of the preprocessing is linear on 60 KB floods', () => {
+  it('prepares each flood in well under a second (quadratic backtracking took 4 to 24 s)', () => {
+    const floods: Record<string, string> = {
+      importBlanks: `import${' '.repeat(60000)};x`,
+      unclosedAttributes: `fn f(${'@a('.repeat(20000)}: f32`,
+      attributeBlanks: `fn f(${'@ '.repeat(30000)}: f32) {}`,
+      arrowFlood: `fn f() ->${' x'.repeat(30000)}`,
+      hexFlood: `0x${'a'.repeat(60000)}`,
+    };
+    for (const [name, source] of Object.entries(floods)) {
+      const started = performance.now();
+      prepareSource(source, 100);
+      const ms = performance.now() - started;
+      expect(ms, name).toBeLessThan(1500);
+    }
+  });
+});
