@@ -115,7 +115,7 @@ describe('exercise progress', () => {
         }),
       ),
     ).toEqual([
-      'exercise “beer-law”: “result.status” must be one of graded, compile-error, wrong-signature, loop-budget, timeout, device-lost',
+      'exercise “beer-law”: “result.status” must be one of graded, compile-error, wrong-signature, loop-budget, rejected, timeout, device-lost, internal-error',
       'exercise “beer-law”: “result.at” must be a date',
     ]);
   });
