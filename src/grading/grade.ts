@@ -581,6 +581,26 @@ async function runDetailed(
       throw new LoopBudgetStop(budget, what, formatArgs(exercise, calls[budgetHit] ?? []));
     }
     return { values: results, counters };
+  } catch (error) {
+    // The student's dispatch ran past the watchdog: with every loop within its budget,
+    // that is code doing far more work per call than the exercise needs (a loop body
+    // of thousands of statements), not the grader's failure. It ends grading (the
+    // device is still busy with that dispatch) as the student's outcome, so it is not
+    // reported as "will be regraded" forever.
+    if (
+      program.role === 'student' &&
+      error instanceof GradeStop &&
+      error.outcome.status === 'timeout'
+    )
+      throw new GradeStop({
+        status: 'loop-budget',
+        message:
+          `While ${what}, your function did not finish ${calls.length} calls within ` +
+          `${(timeoutMs / 1000).toFixed(1)} s on the grader's GPU, so the grader stopped it. ` +
+          'Each call may do only as much work as the exercise needs: look for a loop ' +
+          'whose body does far more than one step.',
+      });
+    throw error;
   } finally {
     input.destroy();
     output.destroy();
