@@ -291,9 +291,16 @@ function importNote(source: string, exercise: ExerciseDefinition): string {
   const imports = blankComments(source).match(/^[ \t]*import[^;\n]*;?/gm) ?? [];
   const other = imports.map((line) => line.trim()).filter((line) => !allowed.has(line));
   if (other.length === 0) return '';
+  // The student's text, shortened: a hostile file may hold thousands of import lines or
+  // one with 60,000 blanks, which the report need not repeat.
+  const shown = other
+    .slice(0, 3)
+    .map((line) => line.replace(/[ \t]+/g, ' '))
+    .map((line) => (line.length > 80 ? `${line.slice(0, 77)}...` : line));
+  if (other.length > shown.length) shown.push(`(${other.length - shown.length} more)`);
   const names = [...allowed].map((line) => line.replace(/^import\s+|;$/g, ''));
   return (
-    ` (Imports other than the helpers this exercise provides are ignored: ${other.join(' ')}. ` +
+    ` (Imports other than the helpers this exercise provides are ignored: ${shown.join(' ')}. ` +
     `Available: ${names.length > 0 ? names.join(', ') : 'none; plain WGSL built-ins only'}.)`
   );
 }
