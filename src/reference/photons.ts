@@ -104,7 +104,8 @@ export function photonCellIndex(
 /** 1/((4/3)πr³) inside the gather sphere, 0 outside. */
 export function photonKernel(distanceSquared: number, radius: number): number {
   // r² below the smallest normal f32 has no volume, as in the shader (a GPU may flush r² to 0).
-  if (!(radius > 0) || radius * radius < 2 ** -126 || !(distanceSquared < radius * radius)) return 0;
+  if (!(radius > 0) || radius * radius < 2 ** -126 || !(distanceSquared < radius * radius))
+    return 0;
   // Saturates at the largest f32 like the shader (r³ leaves the f32 range below r ≈ 2.3e-13 m).
   return Math.min(3 / (4 * Math.PI * radius ** 3), 3.4028234663852886e38);
 }

@@ -167,8 +167,7 @@ export function buildBook(root: string): Book {
   });
   // Every page's links to other pages become relative to it (links.ts), so the site
   // works under any base path.
-  for (const page of pages)
-    page.html = markRoot(relativizeLinks(page.html, page.file), page.file);
+  for (const page of pages) page.html = markRoot(relativizeLinks(page.html, page.file), page.file);
   return { chapters, pages, equations };
 }
 
