@@ -22,6 +22,10 @@ export default defineConfig({
   use: {
     baseURL: `http://localhost:${PORT}`,
     viewport: { width: 1280, height: 900 },
+    // The book registers a service worker that precaches ~6 MB on first load. Every test
+    // gets a fresh context, so it would install and download again in the background of
+    // every test; only tests/e2e/offline.spec.ts, which is about it, allows it.
+    serviceWorkers: 'block',
   },
   projects: [
     {
