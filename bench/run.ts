@@ -1,10 +1,11 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading
+// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading
 // runs a subset.
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
+import { benchCore } from './core.ts';
 import { benchEstimators } from './estimators.ts';
 import { benchGrading } from './grading.ts';
 import { benchPhotons } from './photons.ts';
@@ -24,6 +25,8 @@ const wanted = (name: string): boolean => !only || only.includes(name);
 
 const device = await nodeDevice();
 const tables: BenchTable[] = [];
+if (wanted('core'))
+  tables.push(await benchCore(device, { calls: quick ? 200 : 2000, repeats: quick ? 3 : 5 }));
 if (wanted('transmittance'))
   tables.push(await benchTransmittance(device, { n: quick ? 1 << 16 : 1 << 20, repeats: 5 }));
 if (wanted('estimators'))
