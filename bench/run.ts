@@ -1,13 +1,14 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading
-// runs a subset.
+// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading,pages
+// runs a subset (`pages` measures the production build in dist/: run `npx vite build` first).
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
 import { benchCore } from './core.ts';
 import { benchEstimators } from './estimators.ts';
 import { benchGrading } from './grading.ts';
+import { benchPages } from './pages.ts';
 import { benchPhotons } from './photons.ts';
 import { benchScenes } from './scenes.ts';
 import { benchSubsurface } from './subsurface.ts';
@@ -57,6 +58,7 @@ if (wanted('translucent'))
   );
 if (wanted('grading')) tables.push(await benchGrading(device, { repeats: quick ? 3 : 9 }));
 if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
+if (wanted('pages')) tables.push(...(await benchPages({ repeats: quick ? 1 : 3 })));
 if (wanted('scenes'))
   tables.push(
     await benchScenes(device, {
