@@ -1,8 +1,10 @@
 // A compute dispatch in one call: buffers in, one buffer out, with the GPU time
-// from timestamp queries where the device has them and wall time otherwise.
-// Pipelines are cached per device by source, as the WebGPU CTS does.
-import { withErrorScopes } from './errors.ts';
-import { GpuTimer } from './timing.ts';
+// from timestamp queries where the device has them and wall time otherwise. The
+// pipeline comes from the device's GPU core (one cache for the project), and the
+// buffers and the timer are leased from its pools, so repeated calls allocate
+// nothing once warm.
+import { gpuCore, mapRange, type Lease } from './core.ts';
+import { withErrorScopes, type ScopeOptions } from './errors.ts';
 
 export interface ComputeJob {
   /** Linked WGSL. Binding 0..n-1 of group 0 are `inputs`, binding n is the output. */
@@ -26,22 +28,14 @@ export interface ComputeResult {
   wallMs: number;
 }
 
-const pipelineCache = new WeakMap<GPUDevice, Map<string, GPUComputePipeline>>();
+/** A dispatch of a pipeline the caller already has (the grader compiles its own). */
+export type PipelineJob = Omit<ComputeJob, 'code' | 'entryPoint'>;
 
-function pipelineFor(device: GPUDevice, code: string, entryPoint: string): GPUComputePipeline {
-  let perDevice = pipelineCache.get(device);
-  if (!perDevice) {
-    perDevice = new Map();
-    pipelineCache.set(device, perDevice);
-  }
-  const key = `${entryPoint}\n${code}`;
-  let pipeline = perDevice.get(key);
-  if (!pipeline) {
-    const module = device.createShaderModule({ code });
-    pipeline = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint } });
-    perDevice.set(key, pipeline);
-  }
-  return pipeline;
+export interface DispatchOptions extends ScopeOptions {
+  /** Names the dispatch in error messages. */
+  what: string;
+  /** Time the pass with timestamp queries where available (default true). */
+  timed?: boolean;
 }
 
 /** Storage buffers must be at least 4 bytes and a multiple of 4. */
@@ -51,78 +45,72 @@ function byteSize(words: number): number {
 
 export async function runCompute(device: GPUDevice, job: ComputeJob): Promise<ComputeResult> {
   const entryPoint = job.entryPoint ?? 'main';
-  const created: GPUBuffer[] = [];
-  const track = (buffer: GPUBuffer): GPUBuffer => {
-    created.push(buffer);
-    return buffer;
-  };
-  const timer = new GpuTimer(device);
-  try {
-    const readBack = await withErrorScopes(device, `compute "${entryPoint}"`, () => {
-      const pipeline = pipelineFor(device, job.code, entryPoint);
-      const entries: GPUBindGroupEntry[] = job.inputs.map((data, binding) => {
-        const buffer = track(
-          device.createBuffer({
-            size: byteSize(data.length),
-            usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
-          }),
+  const what = `compute "${entryPoint}"`;
+  const pipeline = await withErrorScopes(device, what, () =>
+    gpuCore(device).computePipeline({ code: job.code, entryPoint }),
+  );
+  return runPipeline(device, pipeline, job, { what });
+}
+
+/**
+ * Dispatches `pipeline` (layout 'auto' or one matching the bindings: inputs, output,
+ * uniforms) once and reads the output back. Errors of the dispatch throw a GpuError
+ * with their kind; `options.wait` wraps every wait on the device.
+ */
+export async function runPipeline(
+  device: GPUDevice,
+  pipeline: GPUComputePipeline,
+  job: PipelineJob,
+  options: DispatchOptions,
+): Promise<ComputeResult> {
+  const core = gpuCore(device);
+  return core.lease().run(async (lease: Lease) => {
+    const timer = options.timed === false ? null : lease.timer();
+    const outputSize = byteSize(job.outputWords);
+    const readBack = await withErrorScopes(
+      device,
+      options.what,
+      () => {
+        const entries = job.inputs.map((data, binding) => ({
+          binding,
+          buffer: lease.upload(`compute.input${binding}`, data, GPUBufferUsage.STORAGE),
+          size: byteSize(data.length),
+        }));
+        const output = lease.buffer(
+          'compute.output',
+          outputSize,
+          GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
         );
-        if (data.length > 0)
-          device.queue.writeBuffer(buffer, 0, data.buffer, data.byteOffset, data.byteLength);
-        return { binding, resource: { buffer } };
-      });
-      const outputSize = byteSize(job.outputWords);
-      const output = track(
-        device.createBuffer({
-          size: outputSize,
-          usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
-        }),
-      );
-      entries.push({ binding: job.inputs.length, resource: { buffer: output } });
-      if (job.uniforms) {
-        const uniform = track(
-          device.createBuffer({
-            size: Math.ceil(job.uniforms.byteLength / 16) * 16 || 16,
-            usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
-          }),
+        entries.push({ binding: job.inputs.length, buffer: output, size: outputSize });
+        if (job.uniforms) {
+          const size = Math.ceil(job.uniforms.byteLength / 16) * 16 || 16;
+          const uniform = lease.upload('compute.uniform', job.uniforms, GPUBufferUsage.UNIFORM);
+          entries.push({ binding: job.inputs.length + 1, buffer: uniform, size });
+        }
+        const readBack = lease.buffer(
+          'compute.read',
+          outputSize,
+          GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
         );
-        device.queue.writeBuffer(
-          uniform,
-          0,
-          job.uniforms.buffer,
-          job.uniforms.byteOffset,
-          job.uniforms.byteLength,
-        );
-        entries.push({ binding: job.inputs.length + 1, resource: { buffer: uniform } });
-      }
-      const readBack = track(
-        device.createBuffer({
-          size: outputSize,
-          usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
-        }),
-      );
-      const bindGroup = device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries });
-      const encoder = device.createCommandEncoder();
-      const pass = encoder.beginComputePass(timer.passDescriptor());
-      pass.setPipeline(pipeline);
-      pass.setBindGroup(0, bindGroup);
-      const [x, y = 1, z = 1] = job.workgroups;
-      pass.dispatchWorkgroups(x, y, z);
-      pass.end();
-      timer.resolve(encoder);
-      encoder.copyBufferToBuffer(output, 0, readBack, 0, outputSize);
-      device.queue.submit([encoder.finish()]);
-      return readBack;
-    });
+        const bindGroup = core.bufferBindGroup(pipeline, entries);
+        const encoder = device.createCommandEncoder();
+        const pass = encoder.beginComputePass(timer?.passDescriptor() ?? {});
+        pass.setPipeline(pipeline);
+        pass.setBindGroup(0, bindGroup);
+        const [x, y = 1, z = 1] = job.workgroups;
+        pass.dispatchWorkgroups(x, y, z);
+        pass.end();
+        timer?.resolve(encoder);
+        encoder.copyBufferToBuffer(output, 0, readBack, 0, outputSize);
+        device.queue.submit([encoder.finish()]);
+        return readBack;
+      },
+      options,
+    );
     const start = performance.now();
-    await readBack.mapAsync(GPUMapMode.READ);
+    const output = new Uint32Array(await mapRange(readBack, job.outputWords * 4, options.wait));
     const wallMs = performance.now() - start;
-    const output = new Uint32Array(readBack.getMappedRange().slice(0, job.outputWords * 4));
-    readBack.unmap();
-    const gpuMs = await timer.read();
+    const gpuMs = timer ? await timer.read() : null;
     return { output, gpuMs, wallMs };
-  } finally {
-    timer.destroy();
-    for (const buffer of created) buffer.destroy();
-  }
+  });
 }
