@@ -3,6 +3,7 @@
 // (two r32float 3D textures), and runs passes of the kernel, reading back each pass's
 // sums and its GPU time. Works in the browser and in Node (Dawn) alike: the caller
 // passes the device and the shader library.
+import { gpuCore } from '../gpu/core.ts';
 import { withErrorScopes } from '../gpu/errors.ts';
 import { linkKernel, type ShaderLibrary } from '../gpu/link.ts';
 import { GpuTimer } from '../gpu/timing.ts';
@@ -22,51 +23,29 @@ export function linkSceneKernel(library: ShaderLibrary, conditions: Conditions):
   return linkKernel(library, source, { ...conditions });
 }
 
-const layouts = new WeakMap<GPUDevice, GPUBindGroupLayout>();
-
 function bindGroupLayout(device: GPUDevice): GPUBindGroupLayout {
-  let layout = layouts.get(device);
-  if (!layout) {
-    const texture: GPUTextureBindingLayout = {
-      sampleType: 'unfilterable-float',
-      viewDimension: '3d',
-    };
-    const visibility = GPUShaderStage.COMPUTE;
-    layout = device.createBindGroupLayout({
-      entries: [
-        { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
-        { binding: 1, visibility, buffer: { type: 'storage' } },
-        { binding: 2, visibility, texture },
-        { binding: 3, visibility, texture },
-        { binding: 4, visibility, buffer: { type: 'uniform' } },
-      ],
-    });
-    layouts.set(device, layout);
-  }
-  return layout;
+  const texture: GPUTextureBindingLayout = {
+    sampleType: 'unfilterable-float',
+    viewDimension: '3d',
+  };
+  const visibility = GPUShaderStage.COMPUTE;
+  return gpuCore(device).bindGroupLayout([
+    { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
+    { binding: 1, visibility, buffer: { type: 'storage' } },
+    { binding: 2, visibility, texture },
+    { binding: 3, visibility, texture },
+    { binding: 4, visibility, buffer: { type: 'uniform' } },
+  ]);
 }
 
-const pipelines = new WeakMap<GPUDevice, Map<string, Promise<GPUComputePipeline>>>();
-
-/** A compute pipeline for linked code, cached per device (compiling is the slow part). */
+/** A compute pipeline for linked code, from the device's GPU core (compiling is the slow part). */
 function pipelineFor(device: GPUDevice, code: string): Promise<GPUComputePipeline> {
-  let perDevice = pipelines.get(device);
-  if (!perDevice) {
-    perDevice = new Map();
-    pipelines.set(device, perDevice);
-  }
-  let pipeline = perDevice.get(code);
-  if (!pipeline) {
-    const module = device.createShaderModule({ code });
-    const layout = device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout(device)] });
-    pipeline = device.createComputePipelineAsync({
-      layout,
-      compute: { module, entryPoint: ENTRY_POINT },
-    });
-    perDevice.set(code, pipeline);
-    pipeline.catch(() => perDevice.delete(code));
-  }
-  return pipeline;
+  const core = gpuCore(device);
+  return core.computePipelineAsync({
+    code,
+    entryPoint: ENTRY_POINT,
+    layout: core.pipelineLayout([bindGroupLayout(device)]),
+  });
 }
 
 function volumeTexture(device: GPUDevice, data: DensityGridData): GPUTexture {
