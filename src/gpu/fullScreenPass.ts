@@ -2,6 +2,7 @@
 // one fragment shader that computes every pixel. The widgets' pictures are all
 // of this shape, so the canvas configuration, the pipeline and the error
 // scopes live here once.
+import { gpuCore } from './core.ts';
 import type { GpuContext } from './device.ts';
 import { withErrorScopes } from './errors.ts';
 import type { GpuTimer } from './timing.ts';
@@ -55,11 +56,11 @@ export class FullScreenPass {
     const format = navigator.gpu.getPreferredCanvasFormat();
     context.configure({ device, format, alphaMode: 'opaque' });
     const parts = await withErrorScopes(device, `${options.label} render pipeline`, () => {
-      const module = device.createShaderModule({ code: options.code });
-      const pipeline = device.createRenderPipeline({
-        layout: 'auto',
-        vertex: { module, entryPoint: options.vertexEntry },
-        fragment: { module, entryPoint: options.fragmentEntry, targets: [{ format }] },
+      const pipeline = gpuCore(device).renderPipeline({
+        code: options.code,
+        label: options.label,
+        vertex: { entryPoint: options.vertexEntry },
+        fragment: { entryPoint: options.fragmentEntry, targets: [{ format }] },
         primitive: { topology: 'triangle-list' },
       });
       const uniform = device.createBuffer({
