@@ -71,20 +71,34 @@ export async function runPipeline(
       device,
       options.what,
       () => {
-        const entries = job.inputs.map((data, binding) => ({
-          binding,
-          buffer: lease.upload(`compute.input${binding}`, data, GPUBufferUsage.STORAGE),
-          size: byteSize(data.length),
-        }));
+        // Pooled buffers hold the previous job's data: every bound byte past the data
+        // is cleared, so kernels see zeros as in new buffers (an output only partly
+        // written, or accumulated into with atomics).
+        const entries = job.inputs.map((data, binding) => {
+          const size = byteSize(data.length);
+          const upload = lease.upload(
+            `compute.input${binding}`,
+            data,
+            GPUBufferUsage.STORAGE,
+            size,
+          );
+          return { binding, buffer: upload, size };
+        });
         const output = lease.buffer(
           'compute.output',
           outputSize,
           GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
+          true,
         );
         entries.push({ binding: job.inputs.length, buffer: output, size: outputSize });
         if (job.uniforms) {
           const size = Math.ceil(job.uniforms.byteLength / 16) * 16 || 16;
-          const uniform = lease.upload('compute.uniform', job.uniforms, GPUBufferUsage.UNIFORM);
+          const uniform = lease.upload(
+            'compute.uniform',
+            job.uniforms,
+            GPUBufferUsage.UNIFORM,
+            size,
+          );
           entries.push({ binding: job.inputs.length + 1, buffer: uniform, size });
         }
         const readBack = lease.buffer(

@@ -104,6 +104,8 @@ export interface CoreCounts {
 interface PooledBuffer {
   buffer: GPUBuffer;
   key: string;
+  /** Created for this lease (so still zero, as WebGPU initializes new buffers). */
+  fresh: boolean;
 }
 
 /**
@@ -118,16 +120,42 @@ export class Lease {
 
   constructor(private readonly core: GpuCore) {}
 
-  /** A buffer of at least `bytes` for `purpose` with `usage`; bind it with its `size`. */
-  buffer(purpose: string, bytes: number, usage: GPUBufferUsageFlags): GPUBuffer {
-    const pooled = this.core.takeBuffer(purpose, bytes, usage);
+  /**
+   * A buffer of at least `bytes` for `purpose` with `usage`; bind it with its `size`
+   * (a pooled buffer may be larger, and arrayLength() sees the bound size). A reused
+   * buffer holds the last job's data; with `zeroed`, its first `bytes` read as zero, as
+   * in a new buffer (cleared by a submit queued now, so before later queue writes).
+   */
+  buffer(purpose: string, bytes: number, usage: GPUBufferUsageFlags, zeroed = false): GPUBuffer {
+    const pooled = this.core.takeBuffer(
+      purpose,
+      bytes,
+      zeroed ? usage | GPUBufferUsage.COPY_DST : usage,
+    );
     this.buffers.push(pooled);
+    if (zeroed && !pooled.fresh && bytes > 0) {
+      const { device } = this.core;
+      const encoder = device.createCommandEncoder();
+      encoder.clearBuffer(pooled.buffer, 0, Math.ceil(bytes / 4) * 4);
+      device.queue.submit([encoder.finish()]);
+    }
     return pooled.buffer;
   }
 
-  /** A buffer holding `data` (written through the queue). */
-  upload(purpose: string, data: ArrayBufferView<ArrayBuffer>, usage: GPUBufferUsageFlags) {
-    const buffer = this.buffer(purpose, data.byteLength, usage | GPUBufferUsage.COPY_DST);
+  /** A buffer holding `data` (written through the queue), zero past it up to `bytes`. */
+  upload(
+    purpose: string,
+    data: ArrayBufferView<ArrayBuffer>,
+    usage: GPUBufferUsageFlags,
+    bytes = data.byteLength,
+  ): GPUBuffer {
+    const size = Math.max(bytes, data.byteLength);
+    const buffer = this.buffer(
+      purpose,
+      size,
+      usage | GPUBufferUsage.COPY_DST,
+      size > data.byteLength,
+    );
     if (data.byteLength > 0)
       this.core.device.queue.writeBuffer(buffer, 0, data.buffer, data.byteOffset, data.byteLength);
     return buffer;
@@ -348,14 +376,15 @@ export class GpuCore {
     const key = `${purpose}|${usage}`;
     const idle = this.idleBuffers.get(key);
     const fitting = idle?.findIndex((buffer) => buffer.size >= bytes) ?? -1;
-    if (idle && fitting >= 0) return { buffer: idle.splice(fitting, 1)[0] as GPUBuffer, key };
+    if (idle && fitting >= 0)
+      return { buffer: idle.splice(fitting, 1)[0] as GPUBuffer, key, fresh: false };
     // Grow-only: an idle buffer too small for this job is replaced by a larger one.
     const smaller = idle?.shift();
     smaller?.destroy();
     let size = MIN_POOLED_BYTES;
     while (size < bytes) size *= 2;
     this.counts.pooledBuffers++;
-    return { buffer: this.device.createBuffer({ label: purpose, size, usage }), key };
+    return { buffer: this.device.createBuffer({ label: purpose, size, usage }), key, fresh: true };
   }
 
   /** @internal */

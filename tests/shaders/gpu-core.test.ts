@@ -57,6 +57,29 @@ describe('GPU core', () => {
     expect(after.shaderModules).toBe(warm.shaderModules);
   });
 
+  it('gives every job a zero output, as a new buffer would be', async () => {
+    const device = await nodeDevice();
+    // A histogram by atomicAdd: a pooled output still holding the last job's counts
+    // would double them.
+    const code = `
+@group(0) @binding(0) var<storage, read> x: array<u32>;
+@group(0) @binding(1) var<storage, read_write> counts: array<atomic<u32>>;
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3u) {
+  if (id.x < arrayLength(&x)) { atomicAdd(&counts[x[id.x] % 4u], 1u); }
+}`;
+    const job = {
+      code,
+      inputs: [new Uint32Array(100).map((_, i) => i)],
+      outputWords: 4,
+      workgroups: [2] as [number],
+    };
+    for (let k = 0; k < 3; k++) {
+      const { output } = await runCompute(device, job);
+      expect([...output]).toEqual([25, 25, 25, 25]);
+    }
+  });
+
   it('keeps concurrent calls apart', async () => {
     const device = await nodeDevice();
     const jobs = Array.from({ length: 6 }, (_, k) => affineJob(50 + 10 * k, k + 1, 3 * k));
