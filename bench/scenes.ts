@@ -15,7 +15,6 @@ import { resolveScene, type ResolvedScene } from '../src/scene/load.ts';
 import { nodeFileReader } from '../src/scene/loadNode.ts';
 import { packScene } from '../src/scene/pack.ts';
 import { GENERAL_CONDITIONS, plan, type Conditions } from '../src/scene/plan.ts';
-import { ImageAccumulator } from '../src/scene/accumulation.ts';
 import { renderScene } from '../src/scene/renderScene.ts';
 import { parseScene } from '../src/scene/validate.ts';
 import { readFileSync } from 'node:fs';
@@ -61,22 +60,24 @@ async function timeKernels(
     for (const conditions of kernels)
       renderers.push(await GpuSceneRenderer.create(device, library, packed, conditions));
     // Warm-up: the first dispatch of a pipeline pays for caches and thread start-up.
-    for (const renderer of renderers) await renderer.renderPass(0, samplesPerPass);
+    for (const renderer of renderers) {
+      await renderer.renderPass(0, samplesPerPass);
+      renderer.accumulation.reset();
+    }
     const pixels = packed.width * packed.height;
-    const accumulators = renderers.map(() => new ImageAccumulator(packed.width, packed.height));
     const times: number[][] = renderers.map(() => []);
     let timing = 'none';
     for (let offset = 0; offset < spp; offset += samplesPerPass) {
       const samples = Math.min(samplesPerPass, spp - offset);
       for (let k = 0; k < renderers.length; k++) {
         const output = await renderers[k]!.renderPass(offset, samples);
-        accumulators[k]!.addPass(output.floats, output.words, samples);
         times[k]!.push(output.milliseconds / samples);
         timing = output.timing ?? renderers[k]!.timing;
       }
     }
+    const images = await Promise.all(renderers.map((r) => r.accumulation.readImage()));
     return renderers.map((renderer, k) => {
-      const acc = accumulators[k]!;
+      const acc = images[k]!;
       const mean = acc.mean();
       const se = acc.standardError();
       const channel = (values: Float64Array, square: boolean) =>

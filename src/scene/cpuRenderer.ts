@@ -5,7 +5,7 @@
 import { cameraRay } from '../reference/camera.ts';
 import { estimateRadiance, sceneCamera, type SceneData } from '../reference/integrator.ts';
 import { pcgHash, rngNextFloat, rngSeed, type RngState } from '../reference/rng.ts';
-import { PASS_WORDS_PER_PIXEL } from './accumulation.ts';
+import { ImageAccumulator, PASS_WORDS_PER_PIXEL, type Accumulation } from './accumulation.ts';
 import type { PassOutput, PassRenderer } from './render.ts';
 
 /** One sample of pixel (x, y): the kernel's stream rngSeed(i, pcgHash(seed) + s), jitter, ray. */
@@ -28,17 +28,25 @@ export function renderPixelSample(
 
 export class CpuSceneRenderer implements PassRenderer {
   readonly timing = 'cpu' as const;
+  /** The float64 moments of every pass so far. */
+  readonly accumulation: ImageAccumulator;
+  /** One pass's sums, PASS_WORDS_PER_PIXEL per pixel, reused from pass to pass. */
+  private readonly passSums: Float64Array;
+
   constructor(
     private readonly scene: SceneData,
     private readonly width: number,
     private readonly height: number,
     private readonly seed: number,
-  ) {}
+  ) {
+    this.accumulation = new ImageAccumulator(width, height);
+    this.passSums = new Float64Array(PASS_WORDS_PER_PIXEL * width * height);
+  }
 
   renderPass(sampleOffset: number, samples: number): Promise<PassOutput> {
     const start = performance.now();
-    const pixels = this.width * this.height;
-    const floats = new Float64Array(PASS_WORDS_PER_PIXEL * pixels);
+    const floats = this.passSums;
+    floats.fill(0);
     for (let y = 0; y < this.height; y++) {
       for (let x = 0; x < this.width; x++) {
         const o = PASS_WORDS_PER_PIXEL * (y * this.width + x);
@@ -62,7 +70,12 @@ export class CpuSceneRenderer implements PassRenderer {
         floats[o + 7] = this.scene.stats.capped;
       }
     }
-    return Promise.resolve({ floats, words: floats, milliseconds: performance.now() - start });
+    this.accumulation.addPass(floats, floats, samples);
+    return Promise.resolve({ milliseconds: performance.now() - start });
+  }
+
+  release(): Accumulation {
+    return this.accumulation;
   }
 
   destroy(): void {}

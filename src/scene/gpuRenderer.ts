@@ -1,14 +1,16 @@
 // The GPU renderer: links shaders/kernels/scene-render.wesl with the plan's conditions
 // (or the general ones), uploads the packed scene (storage buffer) and the grid
-// (two r32float 3D textures), and runs passes of the kernel, reading back each pass's
-// sums and its GPU time. Works in the browser and in Node (Dawn) alike: the caller
-// passes the device and the shader library.
+// (two r32float 3D textures), and runs passes of the kernel, each followed in the same
+// compute pass by the accumulate kernel into a GpuAccumulation that stays on the GPU;
+// a pass reads back only its GPU timestamps. Works in the browser and in Node (Dawn)
+// alike: the caller passes the device and the shader library.
 import { gpuCore } from '../gpu/core.ts';
 import { withErrorScopes } from '../gpu/errors.ts';
-import { linkKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { GpuTimer } from '../gpu/timing.ts';
 import type { DensityGridData } from '../reference/medium.ts';
-import { PASS_WORDS_PER_PIXEL } from './accumulation.ts';
+import { PASS_WORDS_PER_PIXEL, type Accumulation } from './accumulation.ts';
+import { GpuAccumulation } from './gpuAccumulation.ts';
 import type { PackedScene } from './pack.ts';
 import type { Conditions } from './plan.ts';
 import type { PassOutput, PassRenderer } from './render.ts';
@@ -17,10 +19,8 @@ export const SCENE_KERNEL = 'kernels/scene-render.wesl';
 const ENTRY_POINT = 'renderScene';
 
 /** The linked WGSL of the scene kernel for the given conditions. */
-export function linkSceneKernel(library: ShaderLibrary, conditions: Conditions): Promise<string> {
-  const source = library[SCENE_KERNEL];
-  if (source === undefined) return Promise.reject(new Error(`no ${SCENE_KERNEL} in the library`));
-  return linkKernel(library, source, { ...conditions });
+export function linkSceneKernel(library: KernelLibrary, conditions: Conditions): Promise<string> {
+  return linkLibraryKernel(library, SCENE_KERNEL, conditions);
 }
 
 function bindGroupLayout(device: GPUDevice): GPUBindGroupLayout {
@@ -69,8 +69,12 @@ export class GpuSceneRenderer implements PassRenderer {
   timing: 'gpu-timestamp' | 'gpu-wall';
   /** The linked WGSL this renderer runs. */
   readonly code: string;
+  /** The moments of every pass so far, on the GPU. */
+  readonly accumulation: GpuAccumulation;
   private readonly resources: (GPUBuffer | GPUTexture)[];
   private readonly timer: GpuTimer;
+  private readonly passWords = new Uint32Array(8);
+  private released = false;
 
   private constructor(
     private readonly device: GPUDevice,
@@ -79,12 +83,13 @@ export class GpuSceneRenderer implements PassRenderer {
     private readonly packed: PackedScene,
     private readonly bindGroup: GPUBindGroup,
     private readonly output: GPUBuffer,
-    private readonly readBack: GPUBuffer,
     private readonly uniforms: GPUBuffer,
     resources: (GPUBuffer | GPUTexture)[],
+    accumulation: GpuAccumulation,
   ) {
     this.code = code;
     this.resources = resources;
+    this.accumulation = accumulation;
     this.timer = new GpuTimer(device);
     this.timing = this.timer.available ? 'gpu-timestamp' : 'gpu-wall';
   }
@@ -92,12 +97,13 @@ export class GpuSceneRenderer implements PassRenderer {
   /** Links, compiles (cached) and uploads; the scene must be packed (pack.ts). */
   static async create(
     device: GPUDevice,
-    library: ShaderLibrary,
+    library: KernelLibrary,
     packed: PackedScene,
     conditions: Conditions,
   ): Promise<GpuSceneRenderer> {
     const code = await linkSceneKernel(library, conditions);
     const pipeline = await withErrorScopes(device, 'scene kernel', () => pipelineFor(device, code));
+    const accumulation = await GpuAccumulation.create(device, library, packed.width, packed.height);
     const made: (GPUBuffer | GPUTexture)[] = [];
     const outputBytes = PASS_WORDS_PER_PIXEL * 4 * packed.width * packed.height;
     const parts = await withErrorScopes(device, 'scene upload', () => {
@@ -106,21 +112,15 @@ export class GpuSceneRenderer implements PassRenderer {
         usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
       });
       device.queue.writeBuffer(records, 0, packed.records);
-      const output = device.createBuffer({
-        size: outputBytes,
-        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
-      });
-      const readBack = device.createBuffer({
-        size: outputBytes,
-        usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
-      });
+      // The pass's sums stay on the GPU: the accumulate kernel reads them.
+      const output = device.createBuffer({ size: outputBytes, usage: GPUBufferUsage.STORAGE });
       const uniforms = device.createBuffer({
         size: 32,
         usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
       });
       const density = volumeTexture(device, packed.density);
       const majorant = volumeTexture(device, packed.majorant);
-      made.push(records, output, readBack, uniforms, density, majorant);
+      made.push(records, output, uniforms, density, majorant);
       const bindGroup = device.createBindGroup({
         layout: bindGroupLayout(device),
         entries: [
@@ -131,9 +131,10 @@ export class GpuSceneRenderer implements PassRenderer {
           { binding: 4, resource: { buffer: uniforms } },
         ],
       });
-      return { bindGroup, output, readBack, uniforms };
+      return { bindGroup, output, uniforms };
     }).catch((error: unknown) => {
       for (const r of made) r.destroy();
+      accumulation.destroy();
       throw error;
     });
     return new GpuSceneRenderer(
@@ -143,24 +144,21 @@ export class GpuSceneRenderer implements PassRenderer {
       packed,
       parts.bindGroup,
       parts.output,
-      parts.readBack,
       parts.uniforms,
       made,
+      accumulation,
     );
   }
 
+  /**
+   * One pass: the scene kernel and the accumulate kernel in one timed compute pass
+   * (the time covers both), nothing read back but the timestamps.
+   */
   async renderPass(sampleOffset: number, samples: number): Promise<PassOutput> {
     const { device, packed } = this;
-    const pass = new Uint32Array([
-      sampleOffset,
-      samples,
-      packed.seed,
-      packed.width,
-      packed.height,
-      0,
-      0,
-      0,
-    ]);
+    const pass = this.passWords;
+    pass.set([sampleOffset, samples, packed.seed, packed.width, packed.height, 0, 0, 0]);
+    const start = performance.now();
     await withErrorScopes(device, 'scene pass', () => {
       device.queue.writeBuffer(this.uniforms, 0, pass);
       const encoder = device.createCommandEncoder();
@@ -168,27 +166,26 @@ export class GpuSceneRenderer implements PassRenderer {
       computePass.setPipeline(this.pipeline);
       computePass.setBindGroup(0, this.bindGroup);
       computePass.dispatchWorkgroups(Math.ceil(packed.width / 8), Math.ceil(packed.height / 8));
+      this.accumulation.encodeAdd(computePass, this.output, samples);
       computePass.end();
       this.timer.resolve(encoder);
-      encoder.copyBufferToBuffer(this.output, 0, this.readBack, 0, this.output.size);
       device.queue.submit([encoder.finish()]);
     });
-    const start = performance.now();
-    await this.readBack.mapAsync(GPUMapMode.READ);
-    const wallMs = performance.now() - start;
-    const copy = this.readBack.getMappedRange().slice(0);
-    this.readBack.unmap();
     const gpuMs = await this.timer.read();
-    return {
-      floats: new Float32Array(copy),
-      words: new Uint32Array(copy),
-      milliseconds: gpuMs ?? wallMs,
-      timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
-    };
+    if (gpuMs !== null) return { milliseconds: gpuMs, timing: 'gpu-timestamp' };
+    await device.queue.onSubmittedWorkDone();
+    return { milliseconds: performance.now() - start, timing: 'gpu-wall' };
+  }
+
+  release(): Accumulation {
+    this.released = true;
+    this.destroy();
+    return this.accumulation;
   }
 
   destroy(): void {
     this.timer.destroy();
     for (const r of this.resources) r.destroy();
+    if (!this.released) this.accumulation.destroy();
   }
 }

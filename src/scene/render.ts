@@ -1,14 +1,13 @@
 // The progressive render loop shared by both backends: passes of a few samples per
-// pixel, each added to an ImageAccumulator, with the time of every pass (GPU timestamp
-// queries, GPU wall time or CPU wall time) and a progress callback.
-import { ImageAccumulator } from './accumulation.ts';
+// pixel, each added by the renderer to its own Accumulation (on the GPU for the GPU
+// renderer: nothing is read back per pass but the pass's timestamps), with the time of
+// every pass (GPU timestamp queries, GPU wall time or CPU wall time) and a progress
+// callback. The whole image is read back once, at the end.
+import type { Accumulation, ImageAccumulator } from './accumulation.ts';
 
 export type PassTiming = 'gpu-timestamp' | 'gpu-wall' | 'cpu';
 
 export interface PassOutput {
-  /** PASS_WORDS_PER_PIXEL words per pixel, read as floats (sums) and as u32 (counters). */
-  floats: ArrayLike<number>;
-  words: ArrayLike<number>;
   milliseconds: number;
   /** Defaults to the renderer's timing. */
   timing?: PassTiming;
@@ -16,8 +15,15 @@ export interface PassOutput {
 
 export interface PassRenderer {
   readonly timing: PassTiming;
-  /** Samples sampleOffset … sampleOffset + samples − 1 of every pixel. */
+  /** Where the passes accumulate (destroyed with the renderer unless released). */
+  readonly accumulation: Accumulation;
+  /**
+   * Samples sampleOffset … sampleOffset + samples − 1 of every pixel, added to the
+   * accumulation (whose sample count grows by `samples`).
+   */
   renderPass(sampleOffset: number, samples: number): Promise<PassOutput>;
+  /** Frees the renderer but hands its accumulation to the caller, who destroys it. */
+  release(): Accumulation;
   destroy(): void;
 }
 
@@ -46,6 +52,7 @@ export interface RenderOptions {
 }
 
 export interface RenderResult {
+  /** The whole accumulated image, read back once at the end. */
   accumulator: ImageAccumulator;
   passes: PassRecord[];
   wallMs: number;
@@ -67,7 +74,9 @@ export async function renderProgressive(
   height: number,
   options: RenderOptions,
 ): Promise<RenderResult> {
-  const accumulator = new ImageAccumulator(width, height);
+  const accumulation = renderer.accumulation;
+  if (accumulation.width !== width || accumulation.height !== height)
+    throw new Error('the renderer accumulates another image size');
   const passes: PassRecord[] = [];
   const perPass = Math.max(1, Math.floor(options.samplesPerPass));
   const count = Math.ceil(options.spp / perPass);
@@ -77,7 +86,6 @@ export async function renderProgressive(
     const sampleOffset = pass * perPass;
     const samples = Math.min(perPass, options.spp - sampleOffset);
     const output = await renderer.renderPass(sampleOffset, samples);
-    accumulator.addPass(output.floats, output.words, samples);
     passes.push({
       sampleOffset,
       samples,
@@ -85,12 +93,13 @@ export async function renderProgressive(
       timing: output.timing ?? renderer.timing,
     });
     options.onPass?.({
-      samples: accumulator.samples,
+      samples: accumulation.samples,
       totalSamples: options.spp,
       pass: pass + 1,
       passes: count,
       elapsedMs: performance.now() - start,
     });
   }
+  const accumulator = await accumulation.readImage();
   return { accumulator, passes, wallMs: performance.now() - start };
 }

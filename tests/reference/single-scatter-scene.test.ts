@@ -5,7 +5,6 @@
 // by more than the Monte Carlo error (its shaft and its shadow).
 import { describe, expect, it } from 'vitest';
 import { CpuSceneRenderer } from '../../src/scene/cpuRenderer.ts';
-import { ImageAccumulator } from '../../src/scene/accumulation.ts';
 import { resolveScene } from '../../src/scene/load.ts';
 import { nodeFileReader } from '../../src/scene/loadNode.ts';
 import { packScene, sceneData } from '../../src/scene/pack.ts';
@@ -169,10 +168,9 @@ describe('single-scatter scene builder', () => {
         packed.height,
         packed.seed,
       );
-      const accumulator = new ImageAccumulator(packed.width, packed.height);
       const spp = 16;
-      const output = await renderer.renderPass(0, spp);
-      accumulator.addPass(output.floats, output.words, spp);
+      await renderer.renderPass(0, spp);
+      const accumulator = renderer.accumulation;
       // The image's mean radiance and its standard error (pixels are independent).
       const mean = accumulator.mean();
       const errors = accumulator.standardError();

@@ -1,0 +1,187 @@
+// Draws a GPU accumulation (gpuAccumulation.ts) into a widget's WebGPU canvas with one
+// full-screen render pass (shaders/kernels/scene-display.wesl): the tone-mapped mean,
+// or the per-pixel standard error in false colour. Nothing is read back; the canvas
+// holds one pixel per image pixel (CSS scales it). Per draw: one 32-byte uniform write
+// and one render pass; the bind group of an accumulation is made once.
+import { withErrorScopes } from '../gpu/errors.ts';
+import { linkLibraryKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { keepForPrint } from '../widgets/base/print.ts';
+import type { GpuAccumulation } from './gpuAccumulation.ts';
+
+const DISPLAY_KERNEL = 'kernels/scene-display.wesl';
+
+export type AccumulationPicture =
+  | {
+      kind: 'radiance';
+      /** EV: radiance × 2^exposure before the sRGB encoding. */ exposure: number;
+    }
+  | { kind: 'standard-error'; /** Standard error shown as the top colour. */ scale: number };
+
+interface DisplayPipeline {
+  layout: GPUBindGroupLayout;
+  pipeline: GPURenderPipeline;
+}
+
+const pipelines = new WeakMap<GPUDevice, Map<GPUTextureFormat, Promise<DisplayPipeline>>>();
+
+function displayPipeline(
+  device: GPUDevice,
+  library: ShaderLibrary,
+  format: GPUTextureFormat,
+): Promise<DisplayPipeline> {
+  let perDevice = pipelines.get(device);
+  if (!perDevice) {
+    perDevice = new Map();
+    pipelines.set(device, perDevice);
+  }
+  let made = perDevice.get(format);
+  if (!made) {
+    made = linkLibraryKernel(library, DISPLAY_KERNEL).then((code) =>
+      withErrorScopes(device, 'accumulation display pipeline', async () => {
+        const visibility = GPUShaderStage.FRAGMENT;
+        const layout = device.createBindGroupLayout({
+          entries: [
+            { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
+            { binding: 1, visibility, buffer: { type: 'uniform' } },
+          ],
+        });
+        const module = device.createShaderModule({ code });
+        const pipeline = await device.createRenderPipelineAsync({
+          layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
+          vertex: { module, entryPoint: 'displayVertex' },
+          fragment: { module, entryPoint: 'displayFragment', targets: [{ format }] },
+          primitive: { topology: 'triangle-list' },
+        });
+        return { layout, pipeline };
+      }),
+    );
+    const cache = perDevice;
+    const entry = made;
+    cache.set(format, entry);
+    entry.catch(() => {
+      if (cache.get(format) === entry) cache.delete(format);
+    });
+  }
+  return made;
+}
+
+const contextKinds = new WeakMap<HTMLCanvasElement, '2d' | 'webgpu'>();
+
+/**
+ * The canvas to draw on with a `kind` context: `canvas` itself, or, when it already
+ * has the other kind (a canvas keeps its first context: after a fall back from WebGPU
+ * to the CPU, or back), a fresh copy put in its place. Callers keep the returned one.
+ */
+export function canvasForContext(
+  canvas: HTMLCanvasElement,
+  kind: '2d' | 'webgpu',
+): HTMLCanvasElement {
+  const used = contextKinds.get(canvas);
+  if (used === undefined || used === kind) {
+    contextKinds.set(canvas, kind);
+    return canvas;
+  }
+  const fresh = canvas.cloneNode(false) as HTMLCanvasElement;
+  canvas.replaceWith(fresh);
+  contextKinds.set(fresh, kind);
+  return fresh;
+}
+
+export class AccumulationView {
+  private readonly uniform: GPUBuffer;
+  private readonly words = new ArrayBuffer(32);
+  private readonly groups = new WeakMap<GPUBuffer, GPUBindGroup>();
+  private last: { accumulation: GpuAccumulation; picture: AccumulationPicture } | null = null;
+  private destroyed = false;
+
+  private constructor(
+    private readonly device: GPUDevice,
+    private readonly context: GPUCanvasContext,
+    private readonly display: DisplayPipeline,
+  ) {
+    this.uniform = device.createBuffer({
+      size: 32,
+      usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
+    });
+  }
+
+  /** Configures `canvas` for WebGPU on `device`; the canvas must not have a 2D context. */
+  static async create(
+    device: GPUDevice,
+    library: ShaderLibrary,
+    canvas: HTMLCanvasElement,
+  ): Promise<AccumulationView> {
+    const context = canvas.getContext('webgpu');
+    if (!context) throw new Error('the canvas has no WebGPU context');
+    const format = navigator.gpu.getPreferredCanvasFormat();
+    context.configure({ device, format, alphaMode: 'opaque' });
+    const view = new AccumulationView(
+      device,
+      context,
+      await displayPipeline(device, library, format),
+    );
+    keepForPrint(canvas, () => view.redrawLast());
+    return view;
+  }
+
+  /** Draws `accumulation` (the canvas must be sized to its width × height). */
+  draw(accumulation: GpuAccumulation, picture: AccumulationPicture): Promise<void> {
+    if (accumulation.destroyed) return Promise.resolve();
+    this.last = { accumulation, picture };
+    return withErrorScopes(this.device, 'accumulation display', () =>
+      this.encode(accumulation, picture),
+    );
+  }
+
+  /** Draws the last picture again, synchronously (printing: widgets/base/print.ts). */
+  redrawLast(): void {
+    if (this.destroyed || !this.last || this.last.accumulation.destroyed) return;
+    this.encode(this.last.accumulation, this.last.picture);
+  }
+
+  private encode(accumulation: GpuAccumulation, picture: AccumulationPicture): void {
+    const { device } = this;
+    let group = this.groups.get(accumulation.moments);
+    if (!group) {
+      group = device.createBindGroup({
+        layout: this.display.layout,
+        entries: [
+          { binding: 0, resource: { buffer: accumulation.moments } },
+          { binding: 1, resource: { buffer: this.uniform } },
+        ],
+      });
+      this.groups.set(accumulation.moments, group);
+    }
+    const view = new DataView(this.words);
+    view.setUint32(0, accumulation.width, true);
+    view.setUint32(4, accumulation.height, true);
+    view.setUint32(8, picture.kind === 'radiance' ? 0 : 1, true);
+    view.setFloat32(16, picture.kind === 'radiance' ? 2 ** picture.exposure : 1, true);
+    view.setFloat32(20, accumulation.samples, true);
+    view.setFloat32(24, picture.kind === 'standard-error' ? picture.scale : 1, true);
+    device.queue.writeBuffer(this.uniform, 0, this.words);
+    const encoder = device.createCommandEncoder();
+    const pass = encoder.beginRenderPass({
+      colorAttachments: [
+        {
+          view: this.context.getCurrentTexture().createView(),
+          loadOp: 'clear',
+          storeOp: 'store',
+          clearValue: { r: 0, g: 0, b: 0, a: 1 },
+        },
+      ],
+    });
+    pass.setPipeline(this.display.pipeline);
+    pass.setBindGroup(0, group);
+    pass.draw(3);
+    pass.end();
+    device.queue.submit([encoder.finish()]);
+  }
+
+  destroy(): void {
+    this.destroyed = true;
+    this.last = null;
+    this.uniform.destroy();
+    this.context.unconfigure();
+  }
+}

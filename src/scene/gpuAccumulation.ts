@@ -1,0 +1,356 @@
+// The GPU store of a progressive render: per-pixel moments (shaders/moments.wesl) in a
+// storage buffer that stays on the device across passes. The scene renderer encodes
+// the accumulate kernel right after each pass of the scene kernel (encodeAdd); readouts
+// get whole-image statistics from a one-workgroup reduction (64 bytes read back);
+// widgets draw the moments straight into a canvas (accumulationView.ts); only the
+// command line and the tests read the whole image, once, with readImage. Every buffer
+// is made when the store is made: adding a pass or reducing allocates nothing.
+import { withErrorScopes } from '../gpu/errors.ts';
+import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
+import {
+  finishStatistics,
+  ImageAccumulator,
+  type Accumulation,
+  type ImageStatistics,
+} from './accumulation.ts';
+
+/** Bytes per pixel of the moments (struct PixelMoments: mean, lookups, m2, capped). */
+export const MOMENT_BYTES_PER_PIXEL = 32;
+/** Bytes of struct Statistics in scene-statistics.wesl, read back per reduction. */
+export const STATISTICS_BYTES = 64;
+const ACCUMULATE_KERNEL = 'kernels/scene-accumulate.wesl';
+const STATISTICS_KERNEL = 'kernels/scene-statistics.wesl';
+const ACCUMULATE_WORKGROUP = 64;
+
+interface Kernels {
+  accumulateLayout: GPUBindGroupLayout;
+  accumulate: GPUComputePipeline;
+  statisticsLayout: GPUBindGroupLayout;
+  statistics: GPUComputePipeline;
+}
+
+const kernels = new WeakMap<GPUDevice, Promise<Kernels>>();
+
+function storage(binding: number, type: GPUBufferBindingType): GPUBindGroupLayoutEntry {
+  return { binding, visibility: GPUShaderStage.COMPUTE, buffer: { type } };
+}
+
+/** The accumulate and reduction pipelines, compiled once per device. */
+function kernelsFor(device: GPUDevice, library: KernelLibrary): Promise<Kernels> {
+  let made = kernels.get(device);
+  if (!made) {
+    made = (async () => {
+      const [accumulateCode, statisticsCode] = await Promise.all([
+        linkLibraryKernel(library, ACCUMULATE_KERNEL),
+        linkLibraryKernel(library, STATISTICS_KERNEL),
+      ]);
+      return withErrorScopes(device, 'accumulation kernels', async () => {
+        const accumulateLayout = device.createBindGroupLayout({
+          entries: [storage(0, 'read-only-storage'), storage(1, 'storage'), storage(2, 'uniform')],
+        });
+        const statisticsLayout = device.createBindGroupLayout({
+          entries: [
+            storage(0, 'read-only-storage'),
+            storage(1, 'read-only-storage'),
+            storage(2, 'read-only-storage'),
+            storage(3, 'storage'),
+            storage(4, 'uniform'),
+          ],
+        });
+        const pipeline = (code: string, layout: GPUBindGroupLayout, entryPoint: string) =>
+          device.createComputePipelineAsync({
+            layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
+            compute: { module: device.createShaderModule({ code }), entryPoint },
+          });
+        const [accumulate, statistics] = await Promise.all([
+          pipeline(accumulateCode, accumulateLayout, 'accumulatePass'),
+          pipeline(statisticsCode, statisticsLayout, 'reduceStatistics'),
+        ]);
+        return { accumulateLayout, accumulate, statisticsLayout, statistics };
+      });
+    })();
+    const perDevice = made;
+    kernels.set(device, perDevice);
+    perDevice.catch(() => {
+      if (kernels.get(device) === perDevice) kernels.delete(device);
+    });
+  }
+  return made;
+}
+
+export class GpuAccumulation implements Accumulation {
+  samples = 0;
+  /** The moments: read by the display pass (accumulationView.ts) and the reduction. */
+  readonly moments: GPUBuffer;
+  private readonly mask: GPUBuffer;
+  private readonly statisticsBuffer: GPUBuffer;
+  private readonly statisticsReadBack: GPUBuffer;
+  private readonly statisticsParams: GPUBuffer;
+  private readonly accumulateParams: GPUBuffer;
+  private readonly accumulateParamWords = new Uint32Array(4);
+  private readonly statisticsParamWords = new ArrayBuffer(16);
+  /** Reduction bind groups per reference buffer (the image itself when there is none). */
+  private readonly statisticsGroups = new Map<GPUBuffer, GPUBindGroup>();
+  private accumulateGroup: { passOutput: GPUBuffer; group: GPUBindGroup } | null = null;
+  /** Reductions share one read-back buffer: each waits for the one before. */
+  private queue: Promise<unknown> = Promise.resolve();
+  /** Whether a mask was set (without one, maskedLuminance is NaN). */
+  private maskSet = false;
+  private gone = false;
+
+  private constructor(
+    /** The device the moments live on. */
+    readonly device: GPUDevice,
+    private readonly kernels: Kernels,
+    readonly width: number,
+    readonly height: number,
+    moments: GPUBuffer,
+  ) {
+    const pixels = width * height;
+    this.moments = moments;
+    this.mask = device.createBuffer({
+      size: 4 * pixels,
+      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+    });
+    this.statisticsBuffer = device.createBuffer({
+      size: STATISTICS_BYTES,
+      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
+    });
+    this.statisticsReadBack = device.createBuffer({
+      size: STATISTICS_BYTES,
+      usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+    });
+    this.statisticsParams = device.createBuffer({
+      size: 16,
+      usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
+    });
+    this.accumulateParams = device.createBuffer({
+      size: 16,
+      usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
+    });
+  }
+
+  /** An empty store of width × height pixels (its kernels compiled once per device). */
+  static async create(
+    device: GPUDevice,
+    library: KernelLibrary,
+    width: number,
+    height: number,
+  ): Promise<GpuAccumulation> {
+    const compiled = await kernelsFor(device, library);
+    return withErrorScopes(device, 'accumulation buffers', () => {
+      const moments = device.createBuffer({
+        size: MOMENT_BYTES_PER_PIXEL * width * height,
+        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
+      });
+      return new GpuAccumulation(device, compiled, width, height, moments);
+    });
+  }
+
+  /**
+   * Encodes, into the caller's compute pass, the addition of a pass of the scene kernel
+   * (`passOutput`, PASS_WORDS_PER_PIXEL words per pixel, over `samples` samples) to the
+   * moments; the sample count advances now, in encoding order.
+   */
+  encodeAdd(pass: GPUComputePassEncoder, passOutput: GPUBuffer, samples: number): void {
+    if (samples <= 0) return;
+    const pixels = this.width * this.height;
+    if (this.accumulateGroup?.passOutput !== passOutput)
+      this.accumulateGroup = {
+        passOutput,
+        group: this.device.createBindGroup({
+          layout: this.kernels.accumulateLayout,
+          entries: [
+            { binding: 0, resource: { buffer: passOutput } },
+            { binding: 1, resource: { buffer: this.moments } },
+            { binding: 2, resource: { buffer: this.accumulateParams } },
+          ],
+        }),
+      };
+    const words = this.accumulateParamWords;
+    words[0] = pixels;
+    words[1] = this.samples;
+    words[2] = samples;
+    this.device.queue.writeBuffer(this.accumulateParams, 0, words);
+    pass.setPipeline(this.kernels.accumulate);
+    pass.setBindGroup(0, this.accumulateGroup.group);
+    pass.dispatchWorkgroups(Math.ceil(pixels / ACCUMULATE_WORKGROUP));
+    this.samples += samples;
+  }
+
+  setMask(mask: Uint8Array | null): void {
+    const pixels = this.width * this.height;
+    if (mask && mask.length !== pixels) throw new Error('the mask has another size');
+    const weights = new Float32Array(pixels);
+    if (mask) for (let i = 0; i < pixels; i++) weights[i] = mask[i] ? 1 : 0;
+    this.maskSet = mask !== null;
+    this.device.queue.writeBuffer(this.mask, 0, weights);
+  }
+
+  /** True once destroy() was called (a view must not draw it any more). */
+  get destroyed(): boolean {
+    return this.gone;
+  }
+
+  statistics(reference?: Accumulation): Promise<ImageStatistics> {
+    if (this.gone) return Promise.reject(new Error('the accumulation was destroyed'));
+    if (reference !== undefined && !(reference instanceof GpuAccumulation))
+      return Promise.reject(new Error('a GPU accumulation compares only with a GPU one'));
+    if (reference && reference.width * reference.height !== this.width * this.height)
+      return Promise.reject(new Error('the reference has another size'));
+    const run = this.queue.then(() => this.reduce(reference));
+    this.queue = run.catch(() => undefined);
+    return run;
+  }
+
+  private async reduce(reference: GpuAccumulation | undefined): Promise<ImageStatistics> {
+    const { device } = this;
+    const samples = this.samples;
+    const other = reference ?? this;
+    let group = this.statisticsGroups.get(other.moments);
+    if (!group) {
+      group = device.createBindGroup({
+        layout: this.kernels.statisticsLayout,
+        entries: [
+          { binding: 0, resource: { buffer: this.moments } },
+          { binding: 1, resource: { buffer: other.moments } },
+          { binding: 2, resource: { buffer: this.mask } },
+          { binding: 3, resource: { buffer: this.statisticsBuffer } },
+          { binding: 4, resource: { buffer: this.statisticsParams } },
+        ],
+      });
+      this.statisticsGroups.set(other.moments, group);
+    }
+    const params = new DataView(this.statisticsParamWords);
+    params.setUint32(0, this.width * this.height, true);
+    params.setFloat32(4, samples, true);
+    params.setFloat32(8, other.samples, true);
+    device.queue.writeBuffer(this.statisticsParams, 0, this.statisticsParamWords);
+    const encoder = device.createCommandEncoder();
+    const pass = encoder.beginComputePass();
+    pass.setPipeline(this.kernels.statistics);
+    pass.setBindGroup(0, group);
+    pass.dispatchWorkgroups(1);
+    pass.end();
+    encoder.copyBufferToBuffer(
+      this.statisticsBuffer,
+      0,
+      this.statisticsReadBack,
+      0,
+      STATISTICS_BYTES,
+    );
+    device.queue.submit([encoder.finish()]);
+    await this.statisticsReadBack.mapAsync(GPUMapMode.READ);
+    const range = this.statisticsReadBack.getMappedRange();
+    const f = new Float32Array(range.slice(0));
+    this.statisticsReadBack.unmap();
+    const u = new Uint32Array(f.buffer);
+    const wide = (low: number, high: number): number => u[high]! * 2 ** 32 + u[low]!;
+    return finishStatistics(this.width * this.height, samples, {
+      radiance: f[0]!,
+      standardError: f[1]!,
+      standardErrorSq: f[2]!,
+      maxPixelError: f[3]!,
+      maskedLuminance: f[4]!,
+      maskCount: this.maskSet ? f[5]! : 0,
+      squaredDifference: f[6]!,
+      referenceNoise: f[7]!,
+      referenceRadiance: f[8]!,
+      lookups: wide(10, 11),
+      capped: wide(12, 13),
+      hasReference: reference !== undefined,
+    });
+  }
+
+  /** A frozen copy on the GPU: one buffer copy, no read-back. */
+  snapshot(): GpuAccumulation {
+    if (this.gone) throw new Error('the accumulation was destroyed');
+    const { device } = this;
+    const moments = device.createBuffer({
+      size: this.moments.size,
+      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
+    });
+    const copy = new GpuAccumulation(device, this.kernels, this.width, this.height, moments);
+    const encoder = device.createCommandEncoder();
+    encoder.copyBufferToBuffer(this.moments, 0, moments, 0, this.moments.size);
+    encoder.copyBufferToBuffer(this.mask, 0, copy.mask, 0, this.mask.size);
+    device.queue.submit([encoder.finish()]);
+    copy.samples = this.samples;
+    copy.maskSet = this.maskSet;
+    return copy;
+  }
+
+  /** Reads the whole image back (once, on demand): the command line and the tests. */
+  readImage(): Promise<ImageAccumulator> {
+    if (this.gone) return Promise.reject(new Error('the accumulation was destroyed'));
+    const run = this.queue.then(() => this.readAll());
+    this.queue = run.catch(() => undefined);
+    return run;
+  }
+
+  private async readAll(): Promise<ImageAccumulator> {
+    const { device } = this;
+    const readBack = device.createBuffer({
+      size: this.moments.size,
+      usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+    });
+    try {
+      const samples = this.samples;
+      const encoder = device.createCommandEncoder();
+      encoder.copyBufferToBuffer(this.moments, 0, readBack, 0, this.moments.size);
+      device.queue.submit([encoder.finish()]);
+      await readBack.mapAsync(GPUMapMode.READ);
+      const bytes = readBack.getMappedRange().slice(0);
+      const f = new Float32Array(bytes);
+      const u = new Uint32Array(bytes);
+      const pixels = this.width * this.height;
+      const mean = new Float64Array(3 * pixels);
+      const m2 = new Float64Array(3 * pixels);
+      let lookups = 0;
+      let capped = 0;
+      for (let i = 0; i < pixels; i++) {
+        const o = 8 * i;
+        for (let c = 0; c < 3; c++) {
+          mean[3 * i + c] = samples > 0 ? f[o + c]! : 0;
+          m2[3 * i + c] = samples > 0 ? f[o + 4 + c]! : 0;
+        }
+        lookups += samples > 0 ? u[o + 3]! : 0;
+        capped += samples > 0 ? u[o + 7]! : 0;
+      }
+      return ImageAccumulator.fromMoments(
+        this.width,
+        this.height,
+        { samples, mean, m2 },
+        lookups,
+        capped,
+      );
+    } finally {
+      readBack.destroy();
+    }
+  }
+
+  /** The accumulate kernel overwrites the moments when the count before a pass is 0. */
+  reset(): void {
+    this.samples = 0;
+  }
+
+  /** Frees the buffers once the reductions and read-backs already asked for are done. */
+  destroy(): void {
+    if (this.gone) return;
+    this.gone = true;
+    void this.queue.then(() => this.free());
+  }
+
+  private free(): void {
+    for (const buffer of [
+      this.moments,
+      this.mask,
+      this.statisticsBuffer,
+      this.statisticsReadBack,
+      this.statisticsParams,
+      this.accumulateParams,
+    ])
+      buffer.destroy();
+    this.statisticsGroups.clear();
+  }
+}
