@@ -1,6 +1,6 @@
 // Float64 twin of shaders/camera.wesl: camera frames, perspective and orthographic
 // cameras, and the ray through a continuous pixel coordinate (row 0 at the top).
-import { orthonormalBasis, type Vec3 } from './phase.ts';
+import { orthonormalBasis, type Vec3 } from './directions.ts';
 
 export const CAMERA_PERSPECTIVE = 0;
 export const CAMERA_ORTHOGRAPHIC = 1;

@@ -27,15 +27,8 @@ import {
   type LightSample,
 } from './lights.ts';
 import { gridDensityTrilinear, gridMajorantAlongRay, type DensityGrid } from './medium.ts';
-import {
-  hgEvalDirections,
-  hgSample,
-  phaseIsotropic,
-  rayleighEval,
-  rayleighSample,
-  sampleUniformSphere,
-  type Vec3,
-} from './phase.ts';
+import { dispatchedPhase, type PhaseRecord } from '../phase/registry.ts';
+import type { Vec3 } from './directions.ts';
 import { rngNextFloat, type RngState } from './rng.ts';
 import { equiangularSample } from './scatter.ts';
 import {
@@ -65,9 +58,21 @@ export const SCENE_MEDIUM_HOMOGENEOUS = 0;
 export const SCENE_MEDIUM_GRID = 1;
 export const SCENE_BOUNDS_BOX = 0;
 export const SCENE_BOUNDS_SPHERE = 1;
-export const SCENE_PHASE_ISOTROPIC = 0;
-export const SCENE_PHASE_HG = 1;
-export const SCENE_PHASE_RAYLEIGH = 2;
+/**
+ * Where a medium's ScenePhase lies in its six records, as [record, word] from the
+ * medium's first record (integrator.wesl sceneMedium): the kind, the three values and the
+ * table offset. Records 2–4 hold vec3s, so their w words carry values 1–2 and the table
+ * without moving anything else. The tags are the indices of src/phase/registry.ts.
+ */
+export const SCENE_MEDIUM_PHASE = {
+  kind: [0, 2],
+  values: [
+    [0, 3],
+    [2, 3],
+    [3, 3],
+  ],
+  table: [4, 3],
+} as const;
 export const PATH_MAX_VERTICES = 1024;
 export const FLIGHT_PASSED = 0;
 export const FLIGHT_ABSORBED = 1;
@@ -99,8 +104,7 @@ export interface SceneData {
 export interface SceneMedium {
   kind: number;
   shape: number;
-  phase: number;
-  g: number;
+  phase: PhaseRecord;
   boundsA: Vec3;
   radius: number;
   boundsB: Vec3;
@@ -218,8 +222,15 @@ function decoded(scene: SceneData): NonNullable<SceneData['cache']> {
     media.push({
       kind: word(scene, o, 0),
       shape: word(scene, o, 1),
-      phase: word(scene, o, 2),
-      g: field(scene, o, 3),
+      phase: {
+        kind: word(scene, o + SCENE_MEDIUM_PHASE.kind[0], SCENE_MEDIUM_PHASE.kind[1]),
+        values: SCENE_MEDIUM_PHASE.values.map(([r, k]) => field(scene, o + r, k)) as [
+          number,
+          number,
+          number,
+        ],
+        table: word(scene, o + SCENE_MEDIUM_PHASE.table[0], SCENE_MEDIUM_PHASE.table[1]),
+      },
       boundsA: vec(scene, o + 1),
       radius: field(scene, o + 1, 3),
       boundsB: vec(scene, o + 2),
@@ -509,12 +520,9 @@ export function shadowTransmittance(
   return sceneTransmittance(scene, origin, direction, distance, state);
 }
 
+/** The medium's phase function (src/phase/registry.ts), as the kernel's conditions allow. */
 export function mediumPhaseEval(scene: SceneData, medium: SceneMedium, wo: Vec3, wi: Vec3): number {
-  if (on(scene, 'phaseHg') && medium.phase === SCENE_PHASE_HG)
-    return hgEvalDirections(medium.g, wo, wi);
-  if (on(scene, 'phaseRayleigh') && medium.phase === SCENE_PHASE_RAYLEIGH)
-    return rayleighEval(-dot(wo, wi));
-  return phaseIsotropic();
+  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.eval(medium.phase, wo, wi);
 }
 
 export function mediumPhaseSample(
@@ -523,10 +531,7 @@ export function mediumPhaseSample(
   wo: Vec3,
   u: readonly [number, number],
 ): Vec3 {
-  if (on(scene, 'phaseHg') && medium.phase === SCENE_PHASE_HG) return hgSample(medium.g, wo, u).wi;
-  if (on(scene, 'phaseRayleigh') && medium.phase === SCENE_PHASE_RAYLEIGH)
-    return rayleighSample(wo, u).wi;
-  return sampleUniformSphere(u);
+  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.sample(medium.phase, wo, u);
 }
 
 const NO_LIGHT: LightSample = { direction: [0, 0, 1], distance: 0, irradiance: [0, 0, 0] };

@@ -11,8 +11,13 @@
 // with Math.pow (accurate in float64). The clamps, the rule that picks μ from the
 // smaller complement and the basis/azimuth conventions are shared, because a WGSL
 // result can only be compared with a twin that draws the same point.
+//
+// orthonormalBasis, directionAroundAxis and sampleUniformSphere are twinned in
+// directions.ts, as their WGSL moved to shaders/directions.wesl.
 
-export type Vec3 = readonly [number, number, number];
+import { directionAroundAxis, type Vec3 } from './directions.ts';
+
+export type { Vec3 };
 
 /** Same numbers as the shader: its f32 |g| limit (see HG_MAX_ABS_G in phase.wesl). */
 export const HG_MAX_ABS_G = Math.fround(0.99999);
@@ -28,11 +33,6 @@ export interface PhaseSample {
   pdf: number;
 }
 
-export interface OrthonormalBasis {
-  tangent: Vec3;
-  bitangent: Vec3;
-}
-
 const clamp = (x: number, lo: number, hi: number): number => Math.min(Math.max(x, lo), hi);
 const clampG = (g: number): number => clamp(g, -HG_MAX_ABS_G, HG_MAX_ABS_G);
 const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -40,45 +40,6 @@ const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2
 /** p = 1/(4π) (physics.md §2.1). */
 export function phaseIsotropic(): number {
   return 1 / (4 * Math.PI);
-}
-
-/** Duff et al. 2017, "Building an Orthonormal Basis, Revisited", listing 3. */
-export function orthonormalBasis(n: Vec3): OrthonormalBasis {
-  const [x, y, z] = n;
-  const sign = z >= 0 ? 1 : -1;
-  const a = -1 / (sign + z);
-  const b = x * y * a;
-  return {
-    tangent: [1 + sign * x * x * a, sign * b, -sign * x],
-    bitangent: [b, sign + y * y * a, -y],
-  };
-}
-
-/** cosθ·axis + sinθ·(cos φ·tangent + sin φ·bitangent), φ = π(2·uPhi − 1). */
-export function directionAroundAxis(
-  axis: Vec3,
-  cosTheta: number,
-  sinTheta: number,
-  uPhi: number,
-): Vec3 {
-  // u outside [0, 1] is clamped (the shader's φ would overflow).
-  const phi = Math.PI * (2 * clamp(uPhi, 0, 1) - 1);
-  const { tangent, bitangent } = orthonormalBasis(axis);
-  const c = sinTheta * Math.cos(phi);
-  const s = sinTheta * Math.sin(phi);
-  return [0, 1, 2].map((k) => c * tangent[k]! + s * bitangent[k]! + cosTheta * axis[k]!) as [
-    number,
-    number,
-    number,
-  ];
-}
-
-/** z = 1 − 2u.x is uniform on [−1, 1] (Archimedes), φ = π(2u.y − 1); u clamped to [0, 1]². */
-export function sampleUniformSphere(u: readonly [number, number]): Vec3 {
-  const z = 1 - 2 * clamp(u[0], 0, 1);
-  const r = Math.sqrt(Math.max(0, 1 - z * z));
-  const phi = Math.PI * (2 * clamp(u[1], 0, 1) - 1);
-  return [r * Math.cos(phi), r * Math.sin(phi), z];
 }
 
 /**

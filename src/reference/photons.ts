@@ -5,7 +5,7 @@
 // drives which angle, directionAroundAxis's azimuth) are shared so that a WGSL result
 // can be compared with a twin that draws the same point.
 import { fresnelDielectric } from './fresnel.ts';
-import { directionAroundAxis, type Vec3 } from './phase.ts';
+import { directionAroundAxis, type Vec3 } from './directions.ts';
 
 const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const normalize = (a: Vec3): Vec3 => {

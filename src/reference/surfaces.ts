@@ -9,7 +9,7 @@ import {
   raySphereSegment,
   type Segment,
 } from './geometry.ts';
-import { directionAroundAxis, type Vec3 } from './phase.ts';
+import { directionAroundAxis, type Vec3 } from './directions.ts';
 
 export const SURFACE_PLANE = 0;
 export const SURFACE_SPHERE = 1;

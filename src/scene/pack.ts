@@ -13,10 +13,8 @@ import {
   SCENE_MEDIA_RECORD,
   SCENE_MEDIUM_GRID,
   SCENE_MEDIUM_HOMOGENEOUS,
+  SCENE_MEDIUM_PHASE,
   SCENE_ORDER_UNLIMITED,
-  SCENE_PHASE_HG,
-  SCENE_PHASE_ISOTROPIC,
-  SCENE_PHASE_RAYLEIGH,
   SCENE_RECORDS,
   SCENE_SURFACES_RECORD,
   type SceneData,
@@ -30,6 +28,7 @@ import {
 } from '../reference/lights.ts';
 import type { DensityGridData } from '../reference/medium.ts';
 import { SURFACE_BOX, SURFACE_PLANE, SURFACE_SPHERE } from '../reference/surfaces.ts';
+import { packPhase } from '../phase/registry.ts';
 import type { ResolvedScene } from './load.ts';
 import type { Conditions } from './plan.ts';
 
@@ -100,17 +99,12 @@ export function packScene(resolved: ResolvedScene): PackedScene {
   scene.media.forEach((medium, i) => {
     const o = SCENE_MEDIA_RECORD + 6 * i;
     putWord(o, 0, medium.type === 'grid' ? SCENE_MEDIUM_GRID : SCENE_MEDIUM_HOMOGENEOUS);
-    const phase = medium.phase;
-    putWord(
-      o,
-      2,
-      phase.type === 'henyey-greenstein'
-        ? SCENE_PHASE_HG
-        : phase.type === 'rayleigh'
-          ? SCENE_PHASE_RAYLEIGH
-          : SCENE_PHASE_ISOTROPIC,
-    );
-    put(o, 3, [phase.type === 'henyey-greenstein' ? phase.g : 0]);
+    // The phase record (src/phase/registry.ts) in the w words SCENE_MEDIUM_PHASE names.
+    const phase = packPhase(medium.phase);
+    const slots = SCENE_MEDIUM_PHASE;
+    putWord(o + slots.kind[0], slots.kind[1], phase.kind);
+    slots.values.forEach(([record, k], n) => put(o + record, k, [phase.values[n]!]));
+    putWord(o + slots.table[0], slots.table[1], phase.table);
     const bounds = medium.bounds;
     if (bounds.type === 'box') {
       putWord(o, 1, SCENE_BOUNDS_BOX);

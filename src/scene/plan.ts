@@ -9,6 +9,7 @@
 // homogeneous ones included, and every light kind and phase function. It renders any
 // scene; a specialized kernel renders its own scene with less code and fewer random
 // numbers, and tests hold the two to the same image within Monte Carlo error.
+import { PHASE_CONDITIONS, PHASE_FUNCTIONS, type PhaseCondition } from '../phase/registry.ts';
 import type { MediumDescription, SceneDescription } from './types.ts';
 
 export const CONDITION_NAMES = [
@@ -20,8 +21,8 @@ export const CONDITION_NAMES = [
   'surfaces',
   'surfaceScattering',
   'pathTracing',
-  'phaseHg',
-  'phaseRayleigh',
+  // One per phase function with a condition, in registry order (src/phase/registry.ts).
+  ...PHASE_CONDITIONS,
   'lightDirectional',
   'lightPoint',
   'lightSpot',
@@ -31,6 +32,15 @@ export const CONDITION_NAMES = [
 
 export type ConditionName = (typeof CONDITION_NAMES)[number];
 export type Conditions = Readonly<Record<ConditionName, boolean>>;
+
+/** Every phase condition set to `value`, or to `value(condition)`. */
+function phaseConditions(
+  value: boolean | ((condition: PhaseCondition) => boolean),
+): Record<PhaseCondition, boolean> {
+  return Object.fromEntries(
+    PHASE_CONDITIONS.map((c) => [c, typeof value === 'boolean' ? value : value(c)]),
+  ) as Record<PhaseCondition, boolean>;
+}
 
 /** Every effect, general methods: the kernel that renders any scene. */
 export const GENERAL_CONDITIONS: Conditions = {
@@ -42,8 +52,7 @@ export const GENERAL_CONDITIONS: Conditions = {
   surfaces: true,
   surfaceScattering: true,
   pathTracing: true,
-  phaseHg: true,
-  phaseRayleigh: true,
+  ...phaseConditions(true),
   lightDirectional: true,
   lightPoint: true,
   lightSpot: true,
@@ -204,11 +213,7 @@ export function plan(scene: SceneDescription): Plan {
   add(
     'phase functions',
     volumeScattering,
-    describeList([
-      ...(phases.has('isotropic') ? ['isotropic'] : []),
-      ...(phases.has('henyey-greenstein') ? ['Henyey–Greenstein'] : []),
-      ...(phases.has('rayleigh') ? ['Rayleigh'] : []),
-    ]),
+    describeList(PHASE_FUNCTIONS.filter((e) => phases.has(e.id)).map((e) => e.label)),
     volumeScattering ? 'the phase functions of the scattering media' : 'no in-scattering',
   );
 
@@ -277,8 +282,9 @@ export function plan(scene: SceneDescription): Plan {
     surfaces,
     surfaceScattering,
     pathTracing,
-    phaseHg: volumeScattering && phases.has('henyey-greenstein'),
-    phaseRayleigh: volumeScattering && phases.has('rayleigh'),
+    ...phaseConditions(
+      (c) => volumeScattering && PHASE_FUNCTIONS.some((e) => e.condition === c && phases.has(e.id)),
+    ),
     lightDirectional: scattering && kinds.has('directional'),
     lightPoint: scattering && kinds.has('point'),
     lightSpot: scattering && kinds.has('spot'),

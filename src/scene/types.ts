@@ -3,6 +3,7 @@
 // SceneDescription or a list of errors that name the field and the allowed range.
 // Units: lengths in m, coefficients in 1/m, angles in degrees, irradiance in W/m²,
 // intensity in W/sr, radiance in W/(m²·sr), all colours linear RGB.
+import type { PhaseDescription } from '../phase/registry.ts';
 
 export type Vec3 = [number, number, number];
 export type Rgb = [number, number, number];
@@ -24,8 +25,6 @@ export const SCENE_LIMITS = {
   coefficient: 1e6,
   /** Irradiance, intensity, radiance and emission (SI units above). */
   lightValue: 1e9,
-  /** |g| of Henyey–Greenstein (shaders/phase.wesl HG_MAX_ABS_G). */
-  hgG: 0.99999,
 } as const;
 
 export interface PerspectiveCameraDescription {
@@ -54,8 +53,8 @@ export type CameraDescription = PerspectiveCameraDescription | OrthographicCamer
 export type BoundsDescription =
   { type: 'box'; min: Vec3; max: Vec3 } | { type: 'sphere'; center: Vec3; radius: number };
 
-export type PhaseDescription =
-  { type: 'isotropic' } | { type: 'henyey-greenstein'; g: number } | { type: 'rayleigh' };
+/** One variant per phase function of src/phase/registry.ts, e.g. { type: 'henyey-greenstein', g }. */
+export type { PhaseDescription };
 
 export interface GridDescription {
   /** Samples per axis (cell-centred, x fastest), filling the bounds' bounding box. */

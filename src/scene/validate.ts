@@ -12,12 +12,12 @@ import {
   type GridDescription,
   type LightDescription,
   type MediumDescription,
-  type PhaseDescription,
   type Rgb,
   type SceneDescription,
   type SurfaceDescription,
   type Vec3,
 } from './types.ts';
+import { DEFAULT_PHASE, PHASE_IDS, phaseEntry, type PhaseDescription } from '../phase/registry.ts';
 
 export type SceneValidation =
   { ok: true; scene: SceneDescription } | { ok: false; errors: string[] };
@@ -232,21 +232,16 @@ function readBounds(r: Reader, path: string, value: unknown): BoundsDescription 
 }
 
 function readPhase(r: Reader, path: string, value: unknown): PhaseDescription | null {
-  if (value === undefined) return { type: 'isotropic' };
-  const type = r.choice(`${path}.type`, (value as { type?: unknown } | null)?.type, [
-    'isotropic',
-    'henyey-greenstein',
-    'rayleigh',
-  ] as const);
-  if (type === 'henyey-greenstein') {
-    const o = r.object(path, value, ['type', 'g']);
-    const g = o ? r.number(`${path}.g`, o.g, { min: -L.hgG, max: L.hgG }) : null;
-    return g === null ? null : { type, g };
-  }
-  if (type === 'isotropic' || type === 'rayleigh') {
-    return r.object(path, value, ['type']) ? { type } : null;
-  }
-  return null;
+  if (value === undefined) return { ...DEFAULT_PHASE };
+  const type = r.choice(`${path}.type`, (value as { type?: unknown } | null)?.type, PHASE_IDS);
+  if (type === null) return null;
+  // The entry's parameters, read like every other number (names, ranges, messages).
+  const { parameters } = phaseEntry(type);
+  const o = r.object(path, value, ['type', ...parameters.map((p) => p.name)]);
+  if (!o) return null;
+  const values = parameters.map((p) => [p.name, r.number(`${path}.${p.name}`, o[p.name], p)]);
+  if (values.some(([, v]) => v === null)) return null;
+  return { type, ...Object.fromEntries(values) } as PhaseDescription;
 }
 
 /** A path under public/: relative, forward slashes, no "..", a raw float32 file. */

@@ -18,9 +18,9 @@ import {
   rayleighEval,
   rayleighSample,
   rayleighSampleMu,
-  sampleUniformSphere,
   type Vec3,
 } from '../../src/reference/phase.ts';
+import { sampleUniformSphere } from '../../src/reference/directions.ts';
 import { rngNextFloat, rngSeed } from '../../src/reference/rng.ts';
 import { linkKernel } from '../../src/gpu/link.ts';
 import { runCompute } from '../../src/gpu/compute.ts';
@@ -517,7 +517,8 @@ const MODE_SPHERE = 2;
 const GPU_SAMPLES = 1 << 20;
 
 const SAMPLING_KERNEL = `import package::rng::{rngNextFloat, rngSeed};
-import package::phase::{hgSample, hgSampleMu, rayleighSample, sampleUniformSphere};
+import package::directions::sampleUniformSphere;
+import package::phase::{hgSample, hgSampleMu, rayleighSample};
 
 // params: mode, frame, count, bits of g, bits of wo.x, wo.y, wo.z.
 @group(0) @binding(0) var<storage, read> params: array<u32, 7>;

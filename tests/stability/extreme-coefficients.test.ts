@@ -30,7 +30,7 @@ import {
   mediumMajorant,
   sineMedium,
 } from '../../src/reference/medium.ts';
-import { sampleUniformSphere } from '../../src/reference/phase.ts';
+import { sampleUniformSphere } from '../../src/reference/directions.ts';
 import {
   shadowTransmittanceExact,
   singleScatterHomogeneousSlab,
@@ -449,7 +449,7 @@ describeShaderFunction({
 });
 
 describeShaderFunction({
-  module: 'phase',
+  module: 'directions',
   fn: 'sampleUniformSphere',
   args: ['f32', 'f32'],
   result: 'vec3f',

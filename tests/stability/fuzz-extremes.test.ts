@@ -151,7 +151,7 @@ const TARGETS: readonly FuzzTarget[] = [
   { name: 'phase.rayleighEval', kinds: ['signed1'], range: nonNegative },
   { name: 'phase.rayleighSampleMu', kinds: ['any'], range: () => [-1, 1] },
   { name: 'phase.cbrtReal', kinds: ['any'] },
-  { name: 'phase.sampleUniformSphere', kinds: ['any', 'any'], range: () => [-1, 1] },
+  { name: 'directions.sampleUniformSphere', kinds: ['any', 'any'], range: () => [-1, 1] },
   { name: 'slab.slabSpecularReflectance', kinds: ['eta', 'signed1'], range: unitInterval },
   { name: 'slab.slabDistanceToBoundary', kinds: ['nonneg', 'any', 'nonneg'], range: nonNegative },
   { name: 'slab.slabRadius', kinds: ['any', 'any'], range: nonNegative },
