@@ -12,6 +12,8 @@
 // runs append batches of another size.
 import { runCompute } from '../gpu/compute.ts';
 import { linkLibraryKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { packStruct } from '../gpu/layout.ts';
+import { slabKernel } from '../gpu/layouts.generated.ts';
 import { rngSeed } from '../reference/rng.ts';
 import {
   SLAB_EXIT_BOTTOM,
@@ -33,8 +35,8 @@ export const SLAB_WORKGROUP_SIZE = 64;
 export const SLAB_MAX_PHOTONS_PER_THREAD = 256;
 /** Words before the profile in a batch record. */
 const RECORD_HEADER = 8;
-/** Byte size of SlabKernelParams. */
-const PARAMS_BYTES = 80;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = slabKernel.SlabKernelParams;
 /** Largest f32, written for an infinite thickness (a half-space). */
 const F32_MAX = 3.4028234663852886e38;
 
@@ -153,25 +155,27 @@ function clampedThickness(thickness: number): number {
 
 /** The kernel's uniform block for a run. */
 export function packSlabParams(run: SlabRun): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
-  run.channels.slice(0, 4).forEach((channel, c) => {
-    f32[c] = channel.sigmaA;
-    f32[4 + c] = channel.sigmaS;
+  // Up to four channels in a vec4f each; missing channels stay zero.
+  const lanes = (values: number[]): number[] => [...values, 0, 0, 0, 0].slice(0, 4);
+  const channels = run.channels.slice(0, 4);
+  return packStruct(PARAMS, {
+    sigmaA: lanes(channels.map((channel) => channel.sigmaA)),
+    sigmaS: lanes(channels.map((channel) => channel.sigmaS)),
+    g: run.g,
+    thickness: clampedThickness(run.thickness),
+    eta: run.eta,
+    incidenceCos: run.incidenceCos,
+    photonsPerThread: Math.min(
+      Math.max(Math.trunc(run.photonsPerThread), 1),
+      SLAB_MAX_PHOTONS_PER_THREAD,
+    ),
+    maxCollisions: Math.min(Math.max(Math.trunc(run.maxCollisions), 1), SLAB_MAX_COLLISIONS),
+    seed: run.seed >>> 0,
+    threadOffset: run.threadOffset >>> 0,
+    bins: binCount(run),
+    rMin: run.profile.rMin,
+    rMax: run.profile.rMax,
   });
-  f32[8] = run.g;
-  f32[9] = clampedThickness(run.thickness);
-  f32[10] = run.eta;
-  f32[11] = run.incidenceCos;
-  u32[12] = Math.min(Math.max(Math.trunc(run.photonsPerThread), 1), SLAB_MAX_PHOTONS_PER_THREAD);
-  u32[13] = Math.min(Math.max(Math.trunc(run.maxCollisions), 1), SLAB_MAX_COLLISIONS);
-  u32[14] = run.seed >>> 0;
-  u32[15] = run.threadOffset >>> 0;
-  u32[16] = binCount(run);
-  f32[17] = run.profile.rMin;
-  f32[18] = run.profile.rMax;
-  return u32;
 }
 
 function emptyChannel(): ChannelBatches {

@@ -2,6 +2,8 @@
 // linked against the shared library, samples T(s) in a compute pass (timed with
 // timestamp queries where available) and draws the beam in a render pass.
 import { runCompute } from '../../gpu/compute.ts';
+import { packStruct, vec4s } from '../../gpu/layout.ts';
+import { beerLawKernel } from '../../gpu/layouts.generated.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
@@ -16,34 +18,30 @@ import {
 import { LAYER_THICKNESS, LAYER_WEIGHTS, PROFILE_IDS } from './profiles.ts';
 
 const KERNEL = 'kernels/beer-law.wesl';
-/** Byte size of BeerLawParams in the kernel (12 scalars + array<vec4f, 4>). */
-const PARAMS_BYTES = 112;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = beerLawKernel.BeerLawParams;
 
 export function packParams(
   inputs: BeerLawInputs,
   width: number,
   height: number,
 ): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
   const [viewMin, viewMax] = viewRange(inputs.thickness);
-  f32[0] = inputs.sigmaT;
-  f32[1] = inputs.sigmaS;
-  f32[2] = inputs.thickness;
-  f32[3] = inputs.split;
-  u32[4] = PROFILE_IDS[inputs.profile];
-  u32[5] = CURVE_SAMPLES;
-  u32[6] = LAYER_WEIGHTS.length;
-  f32[7] = LAYER_THICKNESS;
-  f32[8] = viewMin;
-  f32[9] = viewMax;
-  f32[10] = width;
-  f32[11] = height;
-  LAYER_WEIGHTS.forEach((weight, i) => {
-    f32[12 + i] = weight;
+  return packStruct(PARAMS, {
+    sigmaT: inputs.sigmaT,
+    sigmaS: inputs.sigmaS,
+    thickness: inputs.thickness,
+    split: inputs.split,
+    profile: PROFILE_IDS[inputs.profile],
+    sampleCount: CURVE_SAMPLES,
+    cellCount: LAYER_WEIGHTS.length,
+    cellSize: LAYER_THICKNESS,
+    viewMin,
+    viewMax,
+    width,
+    height,
+    layers: vec4s(LAYER_WEIGHTS),
   });
-  return u32;
 }
 
 export class BeerLawGpu {
@@ -61,7 +59,7 @@ export class BeerLawGpu {
         code,
         vertexEntry: 'fullScreenVertex',
         fragmentEntry: 'beamFragment',
-        uniformBytes: PARAMS_BYTES,
+        uniformBytes: PARAMS.size,
       }),
     );
     this.picture.catch(() => {

@@ -5,9 +5,11 @@
 // the means of the squares, the lookup counts and the capped counts into a
 // storage buffer, which is read back for the statistics and the two images.
 import type { GpuContext } from '../../gpu/device.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { deltaTrackingKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
-import { runImageKernel, uniformWords, type GpuTiming } from '../base/imageKernel.ts';
+import { runImageKernel, type GpuTiming } from '../base/imageKernel.ts';
 import {
   IMAGE_HEIGHT,
   IMAGE_WIDTH,
@@ -17,8 +19,8 @@ import {
 } from './model.ts';
 
 const KERNEL = 'kernels/delta-tracking.wesl';
-/** Byte size of DeltaParams in the kernel (8 scalars). */
-const PARAMS_BYTES = 32;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = deltaTrackingKernel.DeltaParams;
 
 export function packParams(
   inputs: TrackingInputs,
@@ -26,14 +28,14 @@ export function packParams(
   height: number,
   spp = inputs.spp,
 ): Uint32Array<ArrayBuffer> {
-  const { u32, f32 } = uniformWords(PARAMS_BYTES);
-  u32[0] = width;
-  u32[1] = height;
-  u32[2] = spp;
-  u32[3] = inputs.code;
-  f32[4] = inputs.majorantScale;
-  u32[5] = inputs.seed >>> 0;
-  return u32;
+  return packStruct(PARAMS, {
+    width,
+    height,
+    spp,
+    estimator: inputs.code,
+    majorantScale: inputs.majorantScale,
+    seed: inputs.seed >>> 0,
+  });
 }
 
 export interface GpuImage extends TrackingImage {

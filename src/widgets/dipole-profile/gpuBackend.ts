@@ -9,8 +9,8 @@ import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
 import { runSlabGpu, type GpuSlabResult, type SlabRun } from '../../subsurface/slabKernel.ts';
 import type { ProfileInputs } from './model.ts';
 import {
-  PARAMS_BYTES,
   PROFILE_KERNEL,
+  PROFILE_PARAMS,
   evaluateProfilesGpu,
   packParams,
   type GpuCurves,
@@ -31,7 +31,7 @@ export class DipoleProfileGpu {
         code,
         vertexEntry: 'fullScreenVertex',
         fragmentEntry: 'discFragment',
-        uniformBytes: PARAMS_BYTES,
+        uniformBytes: PROFILE_PARAMS.size,
       }),
     );
     this.picture.catch(() => {

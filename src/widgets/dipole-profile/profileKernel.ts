@@ -2,6 +2,8 @@
 // device call: its uniform block and the compute pass that samples the three diffusion
 // profiles. No browser imports, so the tests and the bench run it through Dawn too.
 import { runCompute } from '../../gpu/compute.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { dipoleProfileKernel } from '../../gpu/layouts.generated.ts';
 import type { GpuTiming } from '../base/imageKernel.ts';
 import {
   GRID_COUNT,
@@ -13,30 +15,26 @@ import {
 } from './model.ts';
 
 export const PROFILE_KERNEL = 'kernels/dipole-profile.wesl';
-/** Byte size of DipoleProfileParams. */
-export const PARAMS_BYTES = 64;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+export const PROFILE_PARAMS = dipoleProfileKernel.DipoleProfileParams;
 
 export function packParams(
   inputs: ProfileInputs,
   width: number,
   height: number,
 ): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
-  for (let c = 0; c < 3; c++) {
-    f32[c] = inputs.sigmaSPrime[c]!;
-    f32[4 + c] = inputs.sigmaA[c]!;
-  }
-  f32[8] = inputs.eta;
-  f32[9] = GRID_R_MIN;
-  f32[10] = GRID_R_MAX;
-  u32[11] = GRID_COUNT;
-  f32[12] = inputs.exposure;
-  f32[13] = inputs.view;
-  f32[14] = width;
-  f32[15] = height;
-  return u32;
+  return packStruct(PROFILE_PARAMS, {
+    sigmaSPrime: [...inputs.sigmaSPrime, 0],
+    sigmaA: [...inputs.sigmaA, 0],
+    eta: inputs.eta,
+    rMin: GRID_R_MIN,
+    rMax: GRID_R_MAX,
+    count: GRID_COUNT,
+    exposure: inputs.exposure,
+    viewRadius: inputs.view,
+    width,
+    height,
+  });
 }
 
 export interface GpuCurves {

@@ -3,6 +3,8 @@
 // in a compute pass (timed with timestamp queries where available, wall time
 // otherwise), and draws the polar lobe in a render pass.
 import { runCompute } from '../../gpu/compute.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { hgLobeKernel } from '../../gpu/layouts.generated.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
@@ -16,27 +18,25 @@ import {
 } from './model.ts';
 
 const KERNEL = 'kernels/hg-lobe.wesl';
-/** Byte size of HgLobeParams in the kernel (12 scalars). */
-const PARAMS_BYTES = 48;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = hgLobeKernel.HgLobeParams;
 const COMPARE_IDS = { none: 0, isotropic: 1, rayleigh: 2 } as const;
 
 export function packParams(inputs: HgLobeInputs, layout: PolarLayout): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
-  f32[0] = inputs.g;
-  u32[1] = COMPARE_IDS[inputs.compare];
-  u32[2] = inputs.scale === 'log' ? 1 : 0;
-  u32[3] = inputs.sampleCount;
-  u32[4] = inputs.seed;
-  f32[5] = layout.width;
-  f32[6] = layout.height;
-  f32[7] = layout.pixelsPerUnit;
-  f32[8] = layout.logFloor;
-  f32[9] = layout.ringStep;
-  f32[10] = layout.centreX;
-  f32[11] = layout.centreY;
-  return u32;
+  return packStruct(PARAMS, {
+    g: inputs.g,
+    compareLobe: COMPARE_IDS[inputs.compare],
+    logScale: inputs.scale === 'log' ? 1 : 0,
+    sampleCount: inputs.sampleCount,
+    seed: inputs.seed,
+    width: layout.width,
+    height: layout.height,
+    pixelsPerUnit: layout.pixelsPerUnit,
+    logFloor: layout.logFloor,
+    ringStep: layout.ringStep,
+    centreX: layout.centreX,
+    centreY: layout.centreY,
+  });
 }
 
 export function workgroupsFor(sampleCount: number): number {
@@ -105,7 +105,7 @@ export class HgLobeGpu {
         code,
         vertexEntry: 'fullScreenVertex',
         fragmentEntry: 'lobeFragment',
-        uniformBytes: PARAMS_BYTES,
+        uniformBytes: PARAMS.size,
       }),
     );
     this.picture.catch(() => {

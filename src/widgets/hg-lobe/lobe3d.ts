@@ -10,6 +10,8 @@
 // with r the radius of the polar plot at k = 1: r = p in sr⁻¹ (linear) or
 // r = max(log₁₀ p − logFloor, 0) decades (log), the same mapping as model.ts's
 // radiusFor. The world's y axis is up on the screen at zero elevation.
+import { packStruct } from '../../gpu/layout.ts';
+import { hgLobe3dKernel } from '../../gpu/layouts.generated.ts';
 import { hgEvalTerms, phaseIsotropic, rayleighEval } from '../../reference/phase.ts';
 import type { CompareLobe, HgLobeInputs, RadiusScale } from './model.ts';
 
@@ -408,32 +410,28 @@ export function facesEye(point: SurfacePoint, eye: Vec3): boolean {
   return dot(point.normal, sub(eye, point.position)) > 0;
 }
 
-/** Byte size of LobeView in the kernel. */
-export const VIEW_BYTES = 128;
+/** The kernel's LobeView uniform, laid out from its WGSL declaration. */
+export const LOBE_VIEW = hgLobe3dKernel.LobeView;
 const COMPARE_IDS = { none: 0, isotropic: 1, rayleigh: 2 } as const;
 
-/** Packs the kernel's LobeView uniform (layout in shaders/kernels/hg-lobe-3d.wesl). */
+/** Packs the kernel's LobeView uniform (declared in shaders/kernels/hg-lobe-3d.wesl). */
 export function packView(
   inputs: HgLobeInputs,
   logFloor: number,
   bounds: SceneBounds,
   camera: Camera,
 ): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(VIEW_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
-  f32.set(camera.viewProjection, 0);
-  f32.set(camera.eye, 16);
-  f32[19] = inputs.g;
-  f32.set(camera.light, 20);
-  u32[23] = inputs.scale === 'log' ? 1 : 0;
-  f32[24] = bounds.arrow.tailX;
-  f32[25] = bounds.arrow.headBaseX;
-  f32[26] = bounds.arrow.shaftRadius;
-  f32[27] = bounds.arrow.headRadius;
-  f32[28] = logFloor;
-  u32[29] = COMPARE_IDS[inputs.compare];
-  f32[30] = bounds.forwardExtent;
-  f32[31] = lobeWarp(inputs.g);
-  return u32;
+  const { arrow } = bounds;
+  return packStruct(LOBE_VIEW, {
+    viewProjection: camera.viewProjection,
+    eye: camera.eye,
+    g: inputs.g,
+    light: camera.light,
+    logScale: inputs.scale === 'log' ? 1 : 0,
+    arrow: [arrow.tailX, arrow.headBaseX, arrow.shaftRadius, arrow.headRadius],
+    logFloor,
+    compareLobe: COMPARE_IDS[inputs.compare],
+    forwardExtent: bounds.forwardExtent,
+    warp: lobeWarp(inputs.g),
+  });
 }

@@ -7,7 +7,7 @@ import { withErrorScopes } from '../../gpu/errors.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
-import { ARROW_VERTEX_COUNT, LOBE_VERTEX_COUNT, VIEW_BYTES, WIRE_VERTEX_COUNT } from './lobe3d.ts';
+import { ARROW_VERTEX_COUNT, LOBE_VERTEX_COUNT, LOBE_VIEW, WIRE_VERTEX_COUNT } from './lobe3d.ts';
 import { keepForPrint } from '../base/print.ts';
 
 export const LOBE_3D_KERNEL = 'kernels/hg-lobe-3d.wesl';
@@ -127,7 +127,7 @@ export class LobeRenderer {
         Object.entries(PIPELINES).map(([name, spec]) => [name, make(spec)]),
       ) as Record<PipelineName, GPURenderPipeline>;
       const uniform = device.createBuffer({
-        size: VIEW_BYTES,
+        size: LOBE_VIEW.size,
         usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
       });
       const bindGroup = device.createBindGroup({

@@ -6,6 +6,8 @@
 // in the browser and, through Dawn, in the tests.
 import type { Camera } from '../../reference/camera.ts';
 import { withErrorScopes } from '../../gpu/errors.ts';
+import { packStruct, wordsOf, writeStruct } from '../../gpu/layout.ts';
+import { inverseRenderKernel } from '../../gpu/layouts.generated.ts';
 import { GpuTimer } from '../../gpu/timing.ts';
 import {
   BACKGROUND,
@@ -24,8 +26,9 @@ export const KERNEL = 'kernels/inverse-render.wesl';
 const WORKGROUP = 64;
 /** stats[0] iterations done, stats[1] dropped atomic adds, then the loss history. */
 const STATS_LOSS_OFFSET = 2;
-const PARAMS_BYTES = 64;
-const CAMERA_FLOATS = 20;
+/** The kernel's uniform and camera records, laid out from their WGSL declarations. */
+const PARAMS = inverseRenderKernel.InverseParams;
+const CAMERA = inverseRenderKernel.Camera;
 const ENTRY_POINTS = [
   'renderTarget',
   'renderField',
@@ -36,21 +39,15 @@ const ENTRY_POINTS = [
 ] as const;
 type EntryPoint = (typeof ENTRY_POINTS)[number];
 
-/** The camera structs as the kernel reads them (80 bytes each, camera.wesl's layout). */
+/** The camera structs as the kernel reads them (camera.wesl's Camera, one per view). */
 export function packCameras(cameras: readonly Camera[]): Float32Array<ArrayBuffer> {
-  const data = new Float32Array(CAMERA_FLOATS * cameras.length);
-  const words = new Uint32Array(data.buffer);
+  const words = wordsOf(new ArrayBuffer(CAMERA.size * cameras.length));
   cameras.forEach((camera, i) => {
-    const o = CAMERA_FLOATS * i;
-    data.set(camera.position, o);
-    words[o + 3] = camera.projection;
-    data.set(camera.forward, o + 4);
-    data.set(camera.right, o + 8);
-    data.set(camera.up, o + 12);
-    data.set(camera.halfExtent, o + 16);
-    data.set(camera.imageSize, o + 18);
+    const { position, projection, forward, right, up, halfExtent, imageSize } = camera;
+    const values = { position, projection, forward, right, up, halfExtent, imageSize };
+    writeStruct(CAMERA, values, words, CAMERA.size * i);
   });
-  return data;
+  return words.f32;
 }
 
 export class InverseTrainerGpu implements Trainer {
@@ -86,12 +83,12 @@ export class InverseTrainerGpu implements Trainer {
       this.buffers.push(buffer);
       return buffer;
     };
-    this.uniform = make(PARAMS_BYTES, GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST);
+    this.uniform = make(PARAMS.size, GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST);
     this.field = make(16 * this.voxels);
     this.moments = make(32 * this.voxels);
     this.gradient = make(16 * this.voxels);
     this.targets = make(12 * this.allPixels);
-    this.cameras = make(4 * CAMERA_FLOATS * problem.views.length);
+    this.cameras = make(CAMERA.size * problem.views.length);
     const cameras = this.cameras;
     this.stats = make(4 * (STATS_LOSS_OFFSET + MAX_ITERATIONS));
     this.image = make(12 * this.allPixels);
@@ -166,24 +163,23 @@ export class InverseTrainerGpu implements Trainer {
   }
 
   private writeParams(hyper: Hyper): void {
-    const buffer = new ArrayBuffer(PARAMS_BYTES);
-    const u32 = new Uint32Array(buffer);
-    const f32 = new Float32Array(buffer);
     const p = this.problem;
-    u32[0] = p.resolution;
-    u32[1] = p.size;
-    u32[2] = p.trainViews;
-    u32[3] = p.steps;
-    u32[4] = p.views.length;
-    u32[5] = hyper.regularizer;
-    u32[6] = MAX_ITERATIONS;
-    u32[7] = this.batchSize(hyper);
-    f32.set(BACKGROUND, 8);
-    f32[11] = 1 / (3 * this.batchSize(hyper));
-    f32[12] = hyper.learningRate;
-    f32[13] = hyper.regularizerWeight / this.voxels;
-    u32[14] = p.seed;
-    this.device.queue.writeBuffer(this.uniform, 0, buffer);
+    const params = packStruct(PARAMS, {
+      resolution: p.resolution,
+      size: p.size,
+      trainViews: p.trainViews,
+      steps: p.steps,
+      renderViews: p.views.length,
+      regularizer: hyper.regularizer,
+      lossCapacity: MAX_ITERATIONS,
+      batch: this.batchSize(hyper),
+      background: BACKGROUND,
+      lossWeight: 1 / (3 * this.batchSize(hyper)),
+      learningRate: hyper.learningRate,
+      regularizerWeight: hyper.regularizerWeight / this.voxels,
+      seed: p.seed,
+    });
+    this.device.queue.writeBuffer(this.uniform, 0, params);
   }
 
   /** Rays per iteration: the requested batch, at most every training pixel. */

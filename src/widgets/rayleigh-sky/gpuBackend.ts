@@ -5,6 +5,8 @@
 import { runCompute } from '../../gpu/compute.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { rayleighSkyKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
 import { GpuTimer } from '../../gpu/timing.ts';
@@ -12,30 +14,29 @@ import type { GpuTiming } from '../base/imageKernel.ts';
 import { exposureScale, probesFor, type Rgb, type SkyInputs, type SkyProbes } from './model.ts';
 
 const KERNEL = 'kernels/rayleigh-sky.wesl';
-/** Byte size of SkyParams in the kernel (8 scalars + 2 vec4f). */
-const PARAMS_BYTES = 64;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = rayleighSkyKernel.SkyParams;
 
 export function packParams(
   inputs: SkyInputs,
   width: number,
   height: number,
 ): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
-  f32[0] = inputs.sinSun;
-  f32[1] = inputs.cosSun;
-  f32[2] = exposureScale(inputs.exposure);
-  u32[3] = inputs.scattering ? 1 : 0;
-  u32[4] = inputs.steps;
-  u32[5] = inputs.sunSteps;
-  f32[6] = width;
-  f32[7] = height;
-  probesFor(inputs).forEach((probe, k) => {
-    f32[8 + k] = probe.mu;
-    f32[12 + k] = probe.nu;
+  const probes = probesFor(inputs);
+  // Three probes in x, y, z; w unused (a fourth probe would fail the vec4 length check).
+  const lanes = (values: number[]): number[] => [...values, 0];
+  return packStruct(PARAMS, {
+    sinSun: inputs.sinSun,
+    cosSun: inputs.cosSun,
+    exposureScale: exposureScale(inputs.exposure),
+    scattering: inputs.scattering ? 1 : 0,
+    steps: inputs.steps,
+    sunSteps: inputs.sunSteps,
+    width,
+    height,
+    probeMu: lanes(probes.map((probe) => probe.mu)),
+    probeNu: lanes(probes.map((probe) => probe.nu)),
   });
-  return u32;
 }
 
 export interface GpuProbes extends SkyProbes {
@@ -95,7 +96,7 @@ export class RayleighSkyGpu {
         code,
         vertexEntry: 'fullScreenVertex',
         fragmentEntry: 'skyFragment',
-        uniformBytes: PARAMS_BYTES,
+        uniformBytes: PARAMS.size,
       }),
     );
     this.picture.catch(() => {

@@ -6,9 +6,11 @@
 // reference is the same kernel with midpoint samples and N = REFERENCE_STEPS,
 // computed once per density scale.
 import type { GpuContext } from '../../gpu/device.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { raymarchStepsKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
-import { runImageKernel, uniformWords, type GpuTiming } from '../base/imageKernel.ts';
+import { runImageKernel, type GpuTiming } from '../base/imageKernel.ts';
 import { MARCH_MIDPOINT } from '../../reference/raymarch.ts';
 import {
   IMAGE_HEIGHT,
@@ -19,8 +21,8 @@ import {
 } from './model.ts';
 
 const KERNEL = 'kernels/raymarch-steps.wesl';
-/** Byte size of RaymarchParams in the kernel (8 scalars). */
-const PARAMS_BYTES = 32;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = raymarchStepsKernel.RaymarchParams;
 
 export function packParams(
   inputs: MarchInputs,
@@ -28,16 +30,15 @@ export function packParams(
   height: number,
   steps = inputs.steps,
 ): Uint32Array<ArrayBuffer> {
-  const { u32, f32 } = uniformWords(PARAMS_BYTES);
-  u32[0] = width;
-  u32[1] = height;
-  u32[2] = steps;
-  u32[3] = inputs.scheme;
-  u32[4] = inputs.linear ? 1 : 0;
-  u32[5] = inputs.seed >>> 0;
-  f32[6] = inputs.density;
-  u32[7] = 0;
-  return u32;
+  return packStruct(PARAMS, {
+    width,
+    height,
+    steps,
+    scheme: inputs.scheme,
+    update: inputs.linear ? 1 : 0,
+    seed: inputs.seed >>> 0,
+    density: inputs.density,
+  });
 }
 
 export interface GpuImage extends MarchImage {

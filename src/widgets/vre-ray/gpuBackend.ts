@@ -2,6 +2,8 @@
 // linked against the shared library, marches the ray in a compute pass (timed
 // with timestamp queries where available) and draws it in a render pass.
 import { runCompute } from '../../gpu/compute.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { vreRayKernel } from '../../gpu/layouts.generated.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
@@ -15,8 +17,8 @@ import {
 } from './model.ts';
 
 const KERNEL = 'kernels/vre-ray.wesl';
-/** Byte size of VreRayParams in the kernel (12 scalars). */
-const PARAMS_BYTES = 48;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = vreRayKernel.VreRayParams;
 /** Words the march writes: three curves of n + 1 samples and L at the eye. */
 export const OUTPUT_WORDS = 3 * (MARCH_STEPS + 1) + 1;
 
@@ -25,22 +27,20 @@ export function packParams(
   width: number,
   height: number,
 ): Uint32Array<ArrayBuffer> {
-  const buffer = new ArrayBuffer(PARAMS_BYTES);
-  const f32 = new Float32Array(buffer);
-  const u32 = new Uint32Array(buffer);
   const [viewMin, viewMax] = viewRange(inputs.length);
-  f32[0] = inputs.sigma;
-  f32[1] = inputs.albedo;
-  f32[2] = inputs.emission;
-  f32[3] = inputs.inscatter;
-  f32[4] = inputs.background;
-  f32[5] = inputs.length;
-  u32[6] = MARCH_STEPS;
-  f32[7] = viewMin;
-  f32[8] = viewMax;
-  f32[9] = width;
-  f32[10] = height;
-  return u32;
+  return packStruct(PARAMS, {
+    sigma: inputs.sigma,
+    albedo: inputs.albedo,
+    emission: inputs.emission,
+    inscatter: inputs.inscatter,
+    background: inputs.background,
+    length: inputs.length,
+    steps: MARCH_STEPS,
+    viewMin,
+    viewMax,
+    width,
+    height,
+  });
 }
 
 /** Splits the kernel's output into the widget's result. */
@@ -74,7 +74,7 @@ export class VreRayGpu {
         code,
         vertexEntry: 'fullScreenVertex',
         fragmentEntry: 'rayFragment',
-        uniformBytes: PARAMS_BYTES,
+        uniformBytes: PARAMS.size,
       }),
     );
     this.picture.catch(() => {
