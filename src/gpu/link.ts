@@ -1,15 +1,63 @@
 // Links a kernel against the shared WGSL library with WESL (imports and @if
-// conditions). The same function runs in the browser (sources bundled by Vite,
-// see shaderSources.ts) and in Node (sources read from disk, see
-// shaderSourcesNode.ts), so tests link exactly what the widgets link.
-import { link } from 'wesl';
+// conditions). In Node (tests, CLI, benchmarks) the library is read from disk
+// (shaderSourcesNode.ts) and every kernel is linked here. The book's pages do not
+// link library kernels: the build links every variant they use into static WGSL files
+// (src/book/build/staticKernels.ts) and the page fetches them (staticKernels.ts), so
+// they pass a PrelinkedKernels instead of the library source. The linker itself is
+// imported on first use, so a page that only fetches static kernels never loads it;
+// the exercise editor (student code) and a variant missing from the build do.
 
 /** Library modules keyed by their path under `shaders/`, e.g. `transmittance.wesl`. */
 export type ShaderLibrary = Readonly<Record<string, string>>;
 
 export type LinkConditions = Readonly<Record<string, boolean>>;
 
+/** Library kernels linked ahead of time (the build's static WGSL), keyed by variantKey. */
+export interface PrelinkedKernels {
+  readonly prelinked: (kernelPath: string, conditions: LinkConditions) => Promise<string>;
+}
+
+/** Where library kernels come from: the library source (linked here) or prelinked files. */
+export type KernelLibrary = ShaderLibrary | PrelinkedKernels;
+
+function isPrelinked(library: KernelLibrary): library is PrelinkedKernels {
+  return typeof (library as Partial<PrelinkedKernels>).prelinked === 'function';
+}
+
+/**
+ * The name of one linked variant: the kernel and the conditions that are on, sorted
+ * (`kernels/scene-render.wesl?emission,media`). WESL takes a condition that is not
+ * given as false, so `{a: false}` and `{}` are the same variant and the same key.
+ */
+export function variantKey(kernelPath: string, conditions: LinkConditions = {}): string {
+  const on = Object.keys(conditions)
+    .filter((name) => conditions[name])
+    .sort();
+  return on.length === 0 ? kernelPath : `${kernelPath}?${on.join(',')}`;
+}
+
 const cache = new Map<string, Promise<string>>();
+
+type Wesl = typeof import('wesl');
+type ModuleResolver = InstanceType<Wesl['RecordResolver']>;
+
+/**
+ * The library parsed once per library object (a RecordResolver keeps the parsed modules):
+ * the build links dozens of variants of one kernel, and re-parsing the whole library
+ * for each took most of the time.
+ */
+const parsedLibraries = new WeakMap<ShaderLibrary, ModuleResolver>();
+
+function libraryResolver(wesl: Wesl, library: ShaderLibrary): ModuleResolver {
+  let resolver = parsedLibraries.get(library);
+  if (!resolver) {
+    const sources: Record<string, string> = {};
+    for (const [path, source] of Object.entries(library)) sources[`./${path}`] = source;
+    resolver = new wesl.RecordResolver(sources, { keepComments: false });
+    parsedLibraries.set(library, resolver);
+  }
+  return resolver;
+}
 
 /**
  * Returns plain WGSL for `rootSource` (a kernel that imports `package::module::fn`),
@@ -24,26 +72,35 @@ export function linkKernel(
   const key = `${JSON.stringify(conditions)}\n${rootSource}`;
   let linked = cache.get(key);
   if (!linked) {
-    const weslSrc: Record<string, string> = { './__root__.wesl': rootSource };
-    for (const [path, source] of Object.entries(library)) weslSrc[`./${path}`] = source;
-    linked = link({
-      weslSrc,
-      rootModuleName: './__root__.wesl',
-      conditions: { ...conditions },
-      keepComments: false,
-    }).then((result) => result.dest);
+    linked = import('wesl')
+      .then((wesl) => {
+        const root = new wesl.RecordResolver(
+          { './__root__.wesl': rootSource },
+          { keepComments: false },
+        );
+        return wesl.link({
+          resolver: new wesl.CompositeResolver([root, libraryResolver(wesl, library)]),
+          rootModuleName: './__root__.wesl',
+          conditions: { ...conditions },
+        });
+      })
+      .then((result) => result.dest);
     cache.set(key, linked);
     linked.catch(() => cache.delete(key));
   }
   return linked;
 }
 
-/** Loads a kernel from `shaders/kernels/NAME.wesl` in the library and links it. */
+/**
+ * The WGSL of `shaders/kernels/NAME.wesl` under `conditions`: linked from the library
+ * source, or the prelinked file of that variant.
+ */
 export function linkLibraryKernel(
-  library: ShaderLibrary,
+  library: KernelLibrary,
   kernelPath: string,
   conditions: LinkConditions = {},
 ): Promise<string> {
+  if (isPrelinked(library)) return library.prelinked(kernelPath, conditions);
   const source = library[kernelPath];
   if (source === undefined) {
     return Promise.reject(new Error(`no shader module "${kernelPath}" in the library`));
