@@ -11,7 +11,7 @@
 // the batch means when every batch has the same size and stays valid when progressive
 // runs append batches of another size.
 import { runCompute } from '../gpu/compute.ts';
-import { linkLibraryKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { packStruct } from '../gpu/layout.ts';
 import { slabKernel } from '../gpu/layouts.generated.ts';
 import { rngSeed } from '../reference/rng.ts';
@@ -224,7 +224,7 @@ export interface GpuSlabResult {
 /** One dispatch of the kernel on `device`, linked from `library`. */
 export async function runSlabGpu(
   device: GPUDevice,
-  library: ShaderLibrary,
+  library: KernelLibrary,
   run: SlabRun,
 ): Promise<GpuSlabResult> {
   const code = await linkLibraryKernel(library, SLAB_KERNEL);

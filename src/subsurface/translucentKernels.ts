@@ -3,7 +3,7 @@
 // dispatched with runCompute, each timed (timestamp queries, else wall time). Takes the
 // device and the library, so the widget (browser) and the tests (Dawn) run the same code.
 import { runCompute } from '../gpu/compute.ts';
-import { linkLibraryKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { packOctree, packParams, type Octree, type TranslucentScene } from './translucent.ts';
 
 export interface TimedImage {
@@ -39,7 +39,7 @@ export class TranslucentKernels {
 
   constructor(
     private readonly device: GPUDevice,
-    private readonly library: ShaderLibrary,
+    private readonly library: KernelLibrary,
   ) {}
 
   async diffuse(scene: TranslucentScene): Promise<TimedImage> {

@@ -7,7 +7,7 @@ import { beerLawKernel } from '../../gpu/layouts.generated.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import {
   CURVE_SAMPLES,
   depthsFor,
@@ -53,7 +53,7 @@ export class BeerLawGpu {
   ) {}
 
   private pass(): Promise<FullScreenPass> {
-    this.picture ??= linkLibraryKernel(SHADER_LIBRARY, KERNEL).then((code) =>
+    this.picture ??= linkLibraryKernel(STATIC_KERNELS, KERNEL).then((code) =>
       FullScreenPass.create(this.gpu, this.canvas, {
         label: 'beer-law',
         code,
@@ -69,7 +69,7 @@ export class BeerLawGpu {
   }
 
   async computeCurve(inputs: BeerLawInputs): Promise<BeerLawResult> {
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
     const n = CURVE_SAMPLES;
     const { output, gpuMs, wallMs } = await runCompute(this.gpu.device, {
       code,

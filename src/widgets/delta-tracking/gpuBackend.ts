@@ -8,7 +8,7 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { packStruct } from '../../gpu/layout.ts';
 import { deltaTrackingKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { runImageKernel, type GpuTiming } from '../base/imageKernel.ts';
 import {
   IMAGE_HEIGHT,
@@ -87,7 +87,7 @@ export class DeltaTrackingGpu {
   constructor(private readonly gpu: GpuContext) {}
 
   async render(inputs: TrackingInputs, spp = inputs.spp): Promise<GpuImage> {
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
     return renderImageGpu(this.gpu.device, code, inputs, IMAGE_WIDTH, IMAGE_HEIGHT, spp);
   }
 }

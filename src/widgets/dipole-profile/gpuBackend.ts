@@ -5,7 +5,7 @@
 import type { GpuContext } from '../../gpu/device.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { runSlabGpu, type GpuSlabResult, type SlabRun } from '../../subsurface/slabKernel.ts';
 import type { ProfileInputs } from './model.ts';
 import {
@@ -25,7 +25,7 @@ export class DipoleProfileGpu {
   ) {}
 
   private pass(): Promise<FullScreenPass> {
-    this.picture ??= linkLibraryKernel(SHADER_LIBRARY, PROFILE_KERNEL).then((code) =>
+    this.picture ??= linkLibraryKernel(STATIC_KERNELS, PROFILE_KERNEL).then((code) =>
       FullScreenPass.create(this.gpu, this.canvas, {
         label: 'dipole-profile',
         code,
@@ -41,7 +41,7 @@ export class DipoleProfileGpu {
   }
 
   async curves(inputs: ProfileInputs): Promise<GpuCurves> {
-    const code = await linkLibraryKernel(SHADER_LIBRARY, PROFILE_KERNEL);
+    const code = await linkLibraryKernel(STATIC_KERNELS, PROFILE_KERNEL);
     return evaluateProfilesGpu(this.gpu.device, code, inputs);
   }
 
@@ -51,6 +51,6 @@ export class DipoleProfileGpu {
   }
 
   monteCarlo(run: SlabRun): Promise<GpuSlabResult> {
-    return runSlabGpu(this.gpu.device, SHADER_LIBRARY, run);
+    return runSlabGpu(this.gpu.device, STATIC_KERNELS, run);
   }
 }

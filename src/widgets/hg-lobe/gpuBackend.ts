@@ -8,7 +8,7 @@ import { hgLobeKernel } from '../../gpu/layouts.generated.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import {
   BIN_COUNT,
   WORKGROUP_SIZE,
@@ -99,7 +99,7 @@ export class HgLobeGpu {
   ) {}
 
   private pass(): Promise<FullScreenPass> {
-    this.picture ??= linkLibraryKernel(SHADER_LIBRARY, KERNEL).then((code) =>
+    this.picture ??= linkLibraryKernel(STATIC_KERNELS, KERNEL).then((code) =>
       FullScreenPass.create(this.gpu, this.canvas, {
         label: 'hg-lobe',
         code,
@@ -115,7 +115,7 @@ export class HgLobeGpu {
   }
 
   async sample(inputs: HgLobeInputs, layout: PolarLayout): Promise<HgHistogram> {
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
     return sampleHistogramGpu(this.gpu.device, code, inputs, layout);
   }
 

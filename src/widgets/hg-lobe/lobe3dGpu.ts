@@ -6,7 +6,7 @@
 import { withErrorScopes } from '../../gpu/errors.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { ARROW_VERTEX_COUNT, LOBE_VERTEX_COUNT, LOBE_VIEW, WIRE_VERTEX_COUNT } from './lobe3d.ts';
 import { keepForPrint } from '../base/print.ts';
 
@@ -215,7 +215,7 @@ export class HgLobe3dGpu {
   }
 
   private pipelines(): Promise<LobeRenderer> {
-    this.renderer ??= linkLibraryKernel(SHADER_LIBRARY, LOBE_3D_KERNEL).then((code) =>
+    this.renderer ??= linkLibraryKernel(STATIC_KERNELS, LOBE_3D_KERNEL).then((code) =>
       LobeRenderer.create(this.gpu.device, code, this.format),
     );
     this.renderer.catch(() => {

@@ -14,7 +14,7 @@ import { LinePlot } from '../base/plot.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { INVERSE_RENDER } from './schema.ts';
 import { CpuTrainer, errorColour, paintError, paintView } from './cpuBackend.ts';
@@ -249,7 +249,7 @@ export class InverseRenderElement extends WidgetElement {
     if (this.status) this.status.textContent = 'Preparing the target images…';
     let trainer: Trainer;
     if (backend.kind === 'gpu') {
-      const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+      const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
       trainer = await InverseTrainerGpu.create(backend.renderer.gpu.device, code, problem);
     } else {
       trainer = await CpuTrainer.create(problem);

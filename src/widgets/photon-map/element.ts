@@ -15,7 +15,7 @@
 // CPU_MAX_PHOTONS photons and says so.
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/imageKernel.ts';
@@ -186,7 +186,7 @@ export class PhotonMapElement extends WidgetElement {
   }
 
   private kernel(): Promise<string> {
-    this.code ??= linkLibraryKernel(SHADER_LIBRARY, 'kernels/photon-map.wesl');
+    this.code ??= linkLibraryKernel(STATIC_KERNELS, 'kernels/photon-map.wesl');
     return this.code;
   }
 

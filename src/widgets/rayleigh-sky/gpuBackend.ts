@@ -8,7 +8,7 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { packStruct } from '../../gpu/layout.ts';
 import { rayleighSkyKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { GpuTimer } from '../../gpu/timing.ts';
 import type { GpuTiming } from '../base/imageKernel.ts';
 import { exposureScale, probesFor, type Rgb, type SkyInputs, type SkyProbes } from './model.ts';
@@ -90,7 +90,7 @@ export class RayleighSkyGpu {
   ) {}
 
   private pass(): Promise<FullScreenPass> {
-    this.picture ??= linkLibraryKernel(SHADER_LIBRARY, KERNEL).then((code) =>
+    this.picture ??= linkLibraryKernel(STATIC_KERNELS, KERNEL).then((code) =>
       FullScreenPass.create(this.gpu, this.canvas, {
         label: 'rayleigh-sky',
         code,
@@ -106,7 +106,7 @@ export class RayleighSkyGpu {
   }
 
   async probes(inputs: SkyInputs): Promise<GpuProbes> {
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
     return computeProbesGpu(this.gpu.device, code, inputs);
   }
 

@@ -9,7 +9,7 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { packStruct } from '../../gpu/layout.ts';
 import { raymarchStepsKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { runImageKernel, type GpuTiming } from '../base/imageKernel.ts';
 import { MARCH_MIDPOINT } from '../../reference/raymarch.ts';
 import {
@@ -95,7 +95,7 @@ export class RaymarchStepsGpu {
   constructor(private readonly gpu: GpuContext) {}
 
   async render(inputs: MarchInputs, steps = inputs.steps): Promise<GpuImage> {
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
     return renderImageGpu(this.gpu.device, code, inputs, IMAGE_WIDTH, IMAGE_HEIGHT, steps);
   }
 

@@ -6,7 +6,7 @@
 // GPU time on log–log axes next to the slope −½ of Monte Carlo. The plan of the scene
 // (src/scene/plan.ts) is listed effect by effect, and the specialized kernel's time per
 // sample is measured against the general kernel's (DESIGN.md contract 3).
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { ImageAccumulator } from '../../scene/accumulation.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
@@ -322,7 +322,7 @@ export class SingleScatterElement extends WidgetElement {
   ): Promise<PassRenderer> {
     const packed = packScene(resolved);
     if (backend.kind === 'gpu')
-      return GpuSceneRenderer.create(backend.gpu.device, SHADER_LIBRARY, packed, conditions);
+      return GpuSceneRenderer.create(backend.gpu.device, STATIC_KERNELS, packed, conditions);
     return new CpuSceneRenderer(
       sceneData(packed, conditions),
       packed.width,

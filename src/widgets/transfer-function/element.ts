@@ -5,7 +5,7 @@
 // fine-step reference (computed once per transfer function and view, band by band,
 // with progress, cancellable), the steps early ray termination takes and saves,
 // its bias bound, and a cancellable sweep of RMSE against time over the step size.
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import {
@@ -131,7 +131,7 @@ export class TransferFunctionElement extends WidgetElement {
 
   private readonly backends = new BackendChooser(
     (gpu) =>
-      VolumeRendererGpu.create(gpu.device, SHADER_LIBRARY, phantomGrid()).then(
+      VolumeRendererGpu.create(gpu.device, STATIC_KERNELS, phantomGrid()).then(
         (renderer) => new GpuRenderer(renderer),
       ),
     () => {

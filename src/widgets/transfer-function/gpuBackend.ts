@@ -7,7 +7,7 @@
 // layout. The output (colour planes and step counts) is read back: the widget
 // needs the numbers for the RMSE and paints them into a 2D canvas.
 import { withErrorScopes } from '../../gpu/errors.ts';
-import { linkKernel, type ShaderLibrary } from '../../gpu/link.ts';
+import { linkLibraryKernel, type KernelLibrary } from '../../gpu/link.ts';
 import { GpuTimer } from '../../gpu/timing.ts';
 import type { DensityGridData } from '../../reference/medium.ts';
 import {
@@ -85,12 +85,10 @@ export class VolumeRendererGpu {
   /** Links the kernel, builds the pipeline and uploads the grid into a 3D texture. */
   static async create(
     device: GPUDevice,
-    library: ShaderLibrary,
+    library: KernelLibrary,
     data: DensityGridData,
   ): Promise<VolumeRendererGpu> {
-    const source = library[KERNEL];
-    if (source === undefined) throw new Error(`no shader module "${KERNEL}" in the library`);
-    const code = await linkKernel(library, source);
+    const code = await linkLibraryKernel(library, KERNEL);
     const [nx, ny, nz] = data.grid.dimensions;
     const parts = await withErrorScopes(device, 'transfer-function pipeline', () => {
       const layout = device.createBindGroupLayout({

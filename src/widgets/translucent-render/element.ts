@@ -16,7 +16,7 @@ import { imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { SweepControls, type SweepPoint } from '../base/sweep.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { findMaterial } from '../../subsurface/materials.ts';
 import {
@@ -136,7 +136,7 @@ export class TranslucentRenderElement extends WidgetElement {
   /** The selected pixel (column, row) of the BSSRDF picture. */
   private selected: [number, number] | null = null;
   private readonly backends = new BackendChooser<TranslucentKernels>(
-    (gpu: GpuContext) => new TranslucentKernels(gpu.device, SHADER_LIBRARY),
+    (gpu: GpuContext) => new TranslucentKernels(gpu.device, STATIC_KERNELS),
     (reason) => {
       this.cancelReference(`stopped: ${reason}`);
       this.sweep?.cancel('stopped: the GPU was lost');

@@ -9,7 +9,7 @@
 // log–log axes, where an unbiased estimator falls with slope −½. Without WebGPU the
 // float64 CPU twin renders a smaller image with fewer samples, and says so.
 import type { GpuContext } from '../../gpu/device.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { ImageAccumulator } from '../../scene/accumulation.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
@@ -279,7 +279,7 @@ export class VolumePathTracerElement extends WidgetElement {
       backend.kind === 'gpu'
         ? await GpuSceneRenderer.create(
             backend.gpu.device,
-            SHADER_LIBRARY,
+            STATIC_KERNELS,
             packed,
             scenePlan.conditions,
           )

@@ -7,7 +7,7 @@ import { vreRayKernel } from '../../gpu/layouts.generated.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
-import { SHADER_LIBRARY } from '../../gpu/shaderSources.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import {
   MARCH_STEPS,
   depthsFor,
@@ -68,7 +68,7 @@ export class VreRayGpu {
   ) {}
 
   private pass(): Promise<FullScreenPass> {
-    this.picture ??= linkLibraryKernel(SHADER_LIBRARY, KERNEL).then((code) =>
+    this.picture ??= linkLibraryKernel(STATIC_KERNELS, KERNEL).then((code) =>
       FullScreenPass.create(this.gpu, this.canvas, {
         label: 'vre-ray',
         code,
@@ -84,7 +84,7 @@ export class VreRayGpu {
   }
 
   async march(inputs: VreRayInputs): Promise<VreRayResult> {
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
+    const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
     const { output, gpuMs, wallMs } = await runCompute(this.gpu.device, {
       code,
       entryPoint: 'marchRay',
