@@ -2,7 +2,10 @@
 // the theme from the `theme=` hash key or the reader's system, the instance of the
 // widget that the hash names (a deep link copied in a chapter names `<widget>-<n>`),
 // the widget itself, and the "Open in the book" link carrying the current state.
-import { WIDGET_LOADERS } from '../widgets/loaders.ts';
+
+// The widgets' host rules (display: block), generated from their definitions.
+import 'virtual:scatterbook/widget-hosts.css';
+import { defineWidgetElement, widgetNamed } from '../widgets/registry.ts';
 
 type Theme = 'light' | 'dark';
 
@@ -68,11 +71,11 @@ function setupChapterLink(): void {
 
 async function loadWidget(): Promise<void> {
   const name = document.body.dataset['widget'] ?? '';
-  const load = WIDGET_LOADERS[name];
+  const definition = widgetNamed(name);
   const elements = document.querySelectorAll(`sb-${name}`);
-  if (!load || elements.length === 0) return;
+  if (!definition || elements.length === 0) return;
   try {
-    (await load()).define();
+    await defineWidgetElement(definition);
   } catch (error) {
     for (const element of elements) {
       const message = document.createElement('p');

@@ -1,21 +1,24 @@
 // The script of every page: theme switch, quiz checking, and the widgets the page
 // embeds (each loaded on demand, each isolated so that one failing widget never
 // takes down the page).
+
+// The widgets' host rules (display: block), generated from their definitions.
+import 'virtual:scatterbook/widget-hosts.css';
 import { setupThemeToggle } from './theme.ts';
 import { setupQuizzes } from './quiz.ts';
 import { setupDeck } from './deck.ts';
 import { setupPrint } from './print.ts';
 import { setupOfflineReading } from './offline.ts';
-import { WIDGET_LOADERS } from '../widgets/loaders.ts';
+import { defineWidgetElement, WIDGETS } from '../widgets/registry.ts';
+import { tagName } from '../widgets/base/definition.ts';
 
 async function loadWidgets(): Promise<void> {
   await Promise.all(
-    Object.entries(WIDGET_LOADERS).map(async ([name, load]) => {
-      const elements = document.querySelectorAll(`sb-${name}`);
+    WIDGETS.map(async (definition) => {
+      const elements = document.querySelectorAll(tagName(definition));
       if (elements.length === 0) return;
       try {
-        const module = await load();
-        module.define();
+        await defineWidgetElement(definition);
       } catch (error) {
         for (const element of elements) {
           const message = document.createElement('p');

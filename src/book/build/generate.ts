@@ -24,6 +24,8 @@ import {
 import { APPENDIX_FILE, APPENDIX_SUMMARY, APPENDIX_TITLE, renderAppendix } from './appendix.ts';
 import { loadShaderDocs } from './shaderDocs.ts';
 import { DECK, validateDeck } from './deck.ts';
+import { hostStyleSheet } from '../../widgets/base/definition.ts';
+import { WIDGET_DEFINITIONS } from '../../widgets/catalog.ts';
 import { markRoot, relativizeLinks } from './links.ts';
 import {
   EMBED_INDEX_FILE,
@@ -180,4 +182,9 @@ export function writeBook(root: string): string[] {
     writeFileSync(path, page.html);
   }
   return book.pages.map((page) => page.file);
+}
+
+/** The host element rules of every widget (served as a virtual style sheet by vitePlugin.ts). */
+export function widgetHostStyles(): string {
+  return hostStyleSheet(WIDGET_DEFINITIONS);
 }

@@ -8,6 +8,7 @@ export type Backend<Renderer> =
 
 export class BackendChooser<Renderer> {
   private current: Promise<Backend<Renderer>> | null = null;
+  private stopListening: (() => void) | null = null;
 
   /**
    * @param makeRenderer builds the widget's GPU renderer once the device exists.
@@ -26,7 +27,7 @@ export class BackendChooser<Renderer> {
       try {
         const gpu = await acquireGpu();
         const renderer = this.makeRenderer(gpu);
-        onDeviceLost((reason) => {
+        this.stopListening = onDeviceLost((reason) => {
           this.useCpu(reason);
           this.onLost(reason);
         });
@@ -41,6 +42,19 @@ export class BackendChooser<Renderer> {
   /** Switches to the CPU path for good (device lost, or the GPU path failed). */
   useCpu(reason: string): void {
     this.current = Promise.resolve({ kind: 'cpu', reason });
+    this.unsubscribe();
+  }
+
+  /** Stops listening for device loss (the widget was destroyed, or is on the CPU for good). */
+  unsubscribe(): void {
+    this.stopListening?.();
+    this.stopListening = null;
+  }
+
+  /** Forgets the choice (and the loss subscription): the next choose() starts over. */
+  reset(): void {
+    this.unsubscribe();
+    this.current = null;
   }
 }
 

@@ -3,8 +3,11 @@
 // its output buffer back with the time it took (timestamp queries where the
 // GPU has them, wall time otherwise).
 import { runCompute } from '../../gpu/compute.ts';
+import type { GpuTiming } from './timing.ts';
 
-export type GpuTiming = 'gpu-timestamp' | 'gpu-wall';
+export type { GpuTiming };
+/** Moved to timing.ts; re-exported until every widget imports it from there. */
+export { timingLabel } from './timing.ts';
 
 /** Views of a fresh uniform block of `bytes` bytes, as u32 and as f32 words. */
 export function uniformWords(bytes: number): { u32: Uint32Array<ArrayBuffer>; f32: Float32Array } {
@@ -41,11 +44,4 @@ export async function runImageKernel(
     milliseconds: gpuMs ?? wallMs,
     timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
   };
-}
-
-/** How a render's time was measured, for the readout. */
-export function timingLabel(timing: GpuTiming | 'cpu'): string {
-  if (timing === 'gpu-timestamp') return 'GPU timestamp query';
-  if (timing === 'gpu-wall') return 'wall time; this GPU has no timestamp queries';
-  return 'CPU wall time';
 }

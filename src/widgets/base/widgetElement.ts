@@ -23,13 +23,12 @@ import { snapshotCanvases } from './print.ts';
 import { embedHeight, embedUrl, fullState, iframeSnippet } from './embedCode.ts';
 import { siteUrl } from './siteUrl.ts';
 
+import type { Preset } from './definition.ts';
+
+export type { Preset };
+
 /** Hash keys a widget understands besides its parameters. */
 const STATE_KEYS = new Set(['present']);
-
-export interface Preset {
-  label: string;
-  values: ParameterValues;
-}
 
 export type NoticeKind = 'info' | 'warning' | 'error';
 
@@ -76,7 +75,7 @@ export abstract class WidgetElement extends HTMLElement {
   private visible = false;
   private dirty = true;
   private rendering = false;
-  private frameRequested = false;
+  private frameRequest: number | null = null;
   private observer: IntersectionObserver | null = null;
   private presentButton: HTMLButtonElement | null = null;
   protected widgetId = '';
@@ -90,7 +89,13 @@ export abstract class WidgetElement extends HTMLElement {
 
   connectedCallback(): void {
     connectedWidgets.add(this);
-    if (this.root) return;
+    if (this.root) {
+      // Moved in the DOM (or put back): the observer was dropped on disconnect, so
+      // observe again and draw again once on screen.
+      this.observe();
+      this.scheduleRender();
+      return;
+    }
     instanceCounter += 1;
     const sameKind = [...document.querySelectorAll(this.localName)].indexOf(this) + 1;
     this.widgetId = this.id || `${this.entry.name}-${sameKind > 0 ? sameKind : instanceCounter}`;
@@ -114,7 +119,12 @@ export abstract class WidgetElement extends HTMLElement {
     }
     this.reportLinkProblems(fromUrl);
     if (fromUrl.get('present') === '1') this.setPresenting(true);
+    this.observe();
+  }
 
+  /** Draws while the shell is on screen (IntersectionObserver reports at once on observe). */
+  private observe(): void {
+    this.observer?.disconnect();
     this.observer = new IntersectionObserver((entries) => {
       this.visible = entries.some((entry) => entry.isIntersecting);
       if (this.visible && this.dirty) this.scheduleRender();
@@ -124,10 +134,32 @@ export abstract class WidgetElement extends HTMLElement {
     if (this.root) this.observer.observe(this.root);
   }
 
+  /** Off the page: stop observing and drop a requested frame (connectedCallback resumes). */
   disconnectedCallback(): void {
     connectedWidgets.delete(this);
     this.observer?.disconnect();
     this.observer = null;
+    this.visible = false;
+    if (this.frameRequest !== null) {
+      cancelAnimationFrame(this.frameRequest);
+      this.frameRequest = null;
+      this.dirty = true;
+    }
+  }
+
+  /**
+   * Forgets the built shell so that the next connection builds the widget anew;
+   * subclasses release their GPU resources and subscriptions first (definedElement.ts).
+   */
+  protected forgetShell(): void {
+    this.observer?.disconnect();
+    this.observer = null;
+    this.root = null;
+    this.noticeArea = null;
+    this.notices.clear();
+    this.controlInputs.clear();
+    this.presentButton = null;
+    this.replaceChildren();
   }
 
   /** A link from a newer build, or with settings this widget does not know, opens anyway and says so. */
@@ -206,7 +238,8 @@ export abstract class WidgetElement extends HTMLElement {
     if (stage) this.buildStage(stage);
     const readout = root.querySelector<HTMLElement>('.sb-readout-area');
     if (readout) this.buildReadout(readout);
-    this.addEventListener('keydown', (event) => this.onKey(event));
+    // The same listener object each time, so a shell built again adds no second one.
+    this.addEventListener('keydown', this.keyListener);
   }
 
   private buildControl(parameter: NumberParameter | ChoiceParameter): HTMLElement {
@@ -490,6 +523,8 @@ export abstract class WidgetElement extends HTMLElement {
     this.scheduleRender();
   }
 
+  private readonly keyListener = (event: KeyboardEvent): void => this.onKey(event);
+
   private onKey(event: KeyboardEvent): void {
     if (event.ctrlKey || event.metaKey || event.altKey) return;
     const target = event.target as HTMLElement | null;
@@ -550,10 +585,10 @@ export abstract class WidgetElement extends HTMLElement {
   /** Renders on the next frame if visible; otherwise when it scrolls into view. */
   protected scheduleRender(): void {
     this.dirty = true;
-    if (!(this.visible || this.isPresenting()) || this.frameRequested) return;
-    this.frameRequested = true;
-    requestAnimationFrame(() => {
-      this.frameRequested = false;
+    if (!this.isConnected || !(this.visible || this.isPresenting()) || this.frameRequest !== null)
+      return;
+    this.frameRequest = requestAnimationFrame(() => {
+      this.frameRequest = null;
       void this.renderNow();
     });
   }

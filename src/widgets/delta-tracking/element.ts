@@ -9,7 +9,7 @@
 // plot of RMSE against time with each curve's fitted slope.
 import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { timingLabel } from '../base/imageKernel.ts';
+import { timingLabel } from '../base/timing.ts';
 import {
   gradientCss,
   imageCanvas,

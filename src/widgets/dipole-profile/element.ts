@@ -9,7 +9,7 @@
 // be cancelled. Without WebGPU the float64 twins do all of it on the CPU.
 import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { timingLabel, type GpuTiming } from '../base/imageKernel.ts';
+import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { LinePlot } from '../base/plot.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';

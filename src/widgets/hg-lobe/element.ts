@@ -12,7 +12,7 @@ import {
 } from '../base/backend.ts';
 import { hgEval } from '../../reference/phase.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { timingLabel } from '../base/imageKernel.ts';
+import { timingLabel } from '../base/timing.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { LinePlot, type PlotSeries } from '../base/plot.ts';
 import { SweepControls, logLogSlope, type SweepPoint } from '../base/sweep.ts';

@@ -11,7 +11,7 @@ import {
   gpuFailureReason,
 } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { timingLabel, type GpuTiming } from '../base/imageKernel.ts';
+import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { ReadoutList } from '../base/readoutList.ts';
 import { SweepControls } from '../base/sweep.ts';
 import { WidgetElement, type Preset } from '../base/widgetElement.ts';

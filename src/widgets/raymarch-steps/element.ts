@@ -5,7 +5,7 @@
 // N = 1, 2, 4, …, 256 plots RMSE against GPU time and fits the order of convergence.
 import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { timingLabel } from '../base/imageKernel.ts';
+import { timingLabel } from '../base/timing.ts';
 import {
   gradientCss,
   imageCanvas,

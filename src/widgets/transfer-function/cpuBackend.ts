@@ -2,7 +2,7 @@
 // interface (FrameRenderer): the GPU kernel (gpuBackend.ts, bands read back into
 // the full image) and, without WebGPU, the float64 twin in model.ts at
 // CPU_SIZE² pixels. Also the painting of images into 2D canvases.
-import { timingLabel } from '../base/imageKernel.ts';
+import { timingLabel } from '../base/timing.ts';
 import type { Rgb } from '../base/imagePanel.ts';
 import type { VolumeRendererGpu } from './gpuBackend.ts';
 import {

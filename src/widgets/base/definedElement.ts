@@ -1,0 +1,240 @@
+// The element built from a widget definition: the shell of WidgetElement (controls,
+// URL state, presentation, presets, notices, errors) plus what every widget used to
+// write for itself: the backend choice (GPU or the CPU twin, `?backend=cpu`, device
+// loss), the CPU-fallback notice, fresh canvases where a WebGPU context was lost,
+// the readouts filled from the definition's rows, the recorded frame cost, and the
+// lifecycle (a widget moved in the DOM draws again; one removed for good releases
+// its GPU resources and its device-loss subscription).
+import type { GpuContext } from '../../gpu/device.ts';
+import { BackendChooser, gpuFailureReason, type Backend } from './backend.ts';
+import { tagName, type FrameBackend, type Readouts, type WidgetDefinition } from './definition.ts';
+import { timingLabel } from './timing.ts';
+import { ReadoutList } from './readoutList.ts';
+import type {
+  CanvasOptions,
+  ManagedCanvas,
+  ViewContext,
+  WidgetModule,
+  WidgetView,
+} from './view.ts';
+import { WidgetElement } from './widgetElement.ts';
+
+/**
+ * How long a disconnected widget waits before it releases its resources. A move is a
+ * disconnect and a connect in the same task; a widget put back later is built anew.
+ */
+const RELEASE_DELAY_MS = 1000;
+
+class Canvas implements ManagedCanvas {
+  element: HTMLCanvasElement;
+  constructor(private readonly options: CanvasOptions) {
+    this.element = this.create();
+  }
+
+  create(): HTMLCanvasElement {
+    const canvas = document.createElement('canvas');
+    canvas.className = this.options.className ?? 'sb-canvas';
+    canvas.setAttribute('role', 'img');
+    canvas.width = this.options.width;
+    canvas.height = this.options.height;
+    return canvas;
+  }
+
+  /**
+   * A canvas whose context is WebGPU cannot give a 2D context (getContext returns
+   * null), so the CPU path gets a fresh one in its place, keeping its description.
+   */
+  replaceIfWebGpu(): void {
+    if (this.element.getContext('2d') !== null) return;
+    const fresh = this.create();
+    const label = this.element.getAttribute('aria-label');
+    if (label !== null) fresh.setAttribute('aria-label', label);
+    this.element.replaceWith(fresh);
+    this.element = fresh;
+  }
+}
+
+/** The element class of a definition whose module provides a view. */
+export function definedElementClass<Frame>(
+  definition: WidgetDefinition<Frame>,
+  module: Extract<WidgetModule<Frame>, { createView: unknown }>,
+): CustomElementConstructor {
+  return class extends DefinedWidgetElement<Frame> {
+    protected readonly definition = definition;
+    protected readonly entry = definition.entry;
+    protected override presets = definition.presets ?? [];
+    protected createView(context: ViewContext): WidgetView<Frame> {
+      return module.createView(context) as WidgetView<Frame>;
+    }
+  };
+}
+
+/** Defines `sb-<name>` from a definition's loaded module (old element or view); once per page. */
+export function defineFromModule<Frame>(
+  definition: WidgetDefinition<Frame>,
+  module: WidgetModule<Frame>,
+): void {
+  const name = tagName(definition);
+  if (customElements.get(name)) return;
+  customElements.define(
+    name,
+    'element' in module ? module.element : definedElementClass(definition, module),
+  );
+}
+
+export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
+  protected abstract readonly definition: WidgetDefinition<Frame>;
+  protected abstract createView(context: ViewContext): WidgetView<Frame>;
+
+  private view: WidgetView<Frame> | null = null;
+  private readouts: ReadoutList | null = null;
+  private canvases: Canvas[] = [];
+  private aborter = new AbortController();
+  private releaseTimer: ReturnType<typeof setTimeout> | null = null;
+  private readonly backends = new BackendChooser<unknown>(
+    (gpu) => this.makeRenderer(gpu),
+    (reason) => this.fallBackToCpu(reason),
+  );
+  private renderer: unknown = null;
+
+  override connectedCallback(): void {
+    if (this.releaseTimer !== null) clearTimeout(this.releaseTimer);
+    this.releaseTimer = null;
+    super.connectedCallback();
+  }
+
+  override disconnectedCallback(): void {
+    super.disconnectedCallback();
+    if (this.releaseTimer !== null) clearTimeout(this.releaseTimer);
+    this.releaseTimer = setTimeout(() => {
+      this.releaseTimer = null;
+      if (!this.isConnected) this.destroy();
+    }, RELEASE_DELAY_MS);
+  }
+
+  /**
+   * Releases the GPU renderer, the device-loss subscription and the view's own work, and
+   * forgets the shell: connected again, the widget is built anew (from its attributes and
+   * the URL).
+   */
+  destroy(): void {
+    this.aborter.abort();
+    this.releaseRenderer();
+    this.backends.reset();
+    this.view?.destroy?.();
+    this.view = null;
+    this.readouts = null;
+    this.canvases = [];
+    this.forgetShell();
+    this.aborter = new AbortController();
+  }
+
+  protected buildStage(stage: HTMLElement): void {
+    this.view = this.createView(this.viewContext());
+    this.view.build(stage);
+  }
+
+  protected buildReadout(area: HTMLElement): void {
+    const rows = this.definition.readouts?.rows ?? [];
+    this.readouts = new ReadoutList(
+      area,
+      rows.map((row) => [row.key, row.label] as const),
+    );
+    this.view?.buildReadoutExtras?.(area);
+  }
+
+  protected override async drawForPrint(): Promise<void> {
+    await this.view?.drawForPrint?.();
+  }
+
+  private viewContext(): ViewContext {
+    // eslint-disable-next-line @typescript-eslint/no-this-alias -- the context reads live state
+    const element = this;
+    return {
+      get values() {
+        return element.values;
+      },
+      get widgetId() {
+        return element.widgetId;
+      },
+      get signal() {
+        return element.aborter.signal;
+      },
+      canvas: (options) => {
+        const canvas = new Canvas(options);
+        this.canvases.push(canvas);
+        return canvas;
+      },
+      scheduleRender: () => this.scheduleRender(),
+      report: (frame, backend) => this.report(frame as Frame, backend),
+      showNotice: (key, kind, message, timeoutMs) => this.showNotice(key, kind, message, timeoutMs),
+      clearNotice: (key) => this.clearNotice(key),
+    };
+  }
+
+  private makeRenderer(gpu: GpuContext): unknown {
+    const view = this.view;
+    if (!view?.createRenderer || !view.renderGpu) throw new Error('this figure draws on the CPU');
+    this.renderer = view.createRenderer(gpu);
+    return this.renderer;
+  }
+
+  private releaseRenderer(): void {
+    if (this.renderer !== null) this.view?.destroyRenderer?.(this.renderer);
+    this.renderer = null;
+  }
+
+  /** After a device loss or a failed GPU frame: fresh canvases and the CPU twin, for good. */
+  private fallBackToCpu(reason: string): void {
+    this.releaseRenderer();
+    for (const canvas of this.canvases) canvas.replaceIfWebGpu();
+    this.backends.useCpu(reason);
+    this.scheduleRender();
+  }
+
+  protected async render(): Promise<void> {
+    const view = this.view;
+    if (!view) return;
+    const backend: Backend<unknown> = await this.backends.choose();
+    if (backend.kind === 'gpu' && view.renderGpu) {
+      let frame: Frame | null;
+      try {
+        frame = await view.renderGpu(backend.renderer, backend.gpu);
+      } catch (error) {
+        this.fallBackToCpu(gpuFailureReason(error));
+        return;
+      }
+      this.clearNotice('backend');
+      if (frame !== null)
+        this.report(frame, {
+          kind: 'gpu',
+          adapterDescription: backend.gpu.adapterDescription,
+        });
+      return;
+    }
+    const reason = backend.kind === 'cpu' ? backend.reason : 'this figure draws on the CPU';
+    const frame = await view.renderCpu();
+    this.showCpuFallbackNotice(reason, view.cpuNotice);
+    if (frame !== null) this.report(frame, { kind: 'cpu', reason });
+  }
+
+  /** Fills the readouts and the cost line, records the cost, and lets the view draw the rest. */
+  private report(frame: Frame, backend: FrameBackend): void {
+    const readouts: Readouts<Frame> | undefined = this.definition.readouts;
+    if (readouts) {
+      for (const row of readouts.rows) {
+        const value = row.format(frame, backend);
+        if (typeof value === 'string') this.readouts?.set(row.key, value);
+        else this.readouts?.set(row.key, value.text, value.state);
+      }
+      const cost = readouts.cost(frame);
+      const how = timingLabel(cost.timing);
+      this.recordFrameCost(cost.milliseconds, how);
+      const where =
+        backend.kind === 'gpu' ? `WebGPU (${backend.adapterDescription})` : 'CPU fallback';
+      if (this.readouts)
+        this.readouts.cost.textContent = `${where}: ${readouts.costLine(frame, how, backend)}`;
+    }
+    this.view?.show?.(frame, backend);
+  }
+}

@@ -1,0 +1,84 @@
+// The part of a widget that is specific to it, loaded lazily by its definition
+// (widget.ts → load()): building its canvases and plots, a GPU render and a CPU
+// render that each produce a frame, and what to draw from a frame besides the
+// readouts. Everything else (controls, URL state, presentation, presets, the
+// backend choice and its fallback, notices, errors, frame cost, readouts and the
+// lifecycle) is the base element's (definedElement.ts).
+import type { GpuContext } from '../../gpu/device.ts';
+import type { ParameterValues } from '../parameters.ts';
+import type { FrameBackend } from './definition.ts';
+import type { NoticeKind } from './widgetElement.ts';
+
+/**
+ * A canvas owned by the base element. After a device loss or a failed GPU frame the
+ * base replaces it with a fresh one if it holds a WebGPU context (a canvas cannot
+ * change its context type), so read `element` each frame rather than keeping it.
+ */
+export interface ManagedCanvas {
+  readonly element: HTMLCanvasElement;
+}
+
+export interface CanvasOptions {
+  width: number;
+  height: number;
+  /** Class of the canvas element; default `sb-canvas`. */
+  className?: string;
+}
+
+/** What the base element offers a view. */
+export interface ViewContext {
+  /** The widget's current, validated parameter values. */
+  readonly values: ParameterValues;
+  /** A canvas (role="img") the base can swap for a fresh one when the GPU goes away. */
+  canvas(options: CanvasOptions): ManagedCanvas;
+  /** Draws again on the next frame while on screen (after the view's own input, or a job step). */
+  scheduleRender(): void;
+  /**
+   * Fills the readouts and the cost line from a frame outside render(), e.g. from each
+   * step of a long job (the escape hatch: render() starts the job and returns null).
+   */
+  report(frame: unknown, backend: FrameBackend): void;
+  showNotice(key: string, kind: NoticeKind, message: string, timeoutMs?: number): void;
+  clearNotice(key: string): void;
+  /** The element's id, unique on the page (for ids of the view's own controls). */
+  readonly widgetId: string;
+  /** Aborted when the widget is destroyed: long jobs stop on it. */
+  readonly signal: AbortSignal;
+}
+
+export interface WidgetView<Frame, Renderer = unknown> {
+  /** Builds the drawing area: canvases (through context.canvas), plots, extra DOM. */
+  build(stage: HTMLElement): void;
+  /** Extra DOM under the readout list (buttons, tables); optional. */
+  buildReadoutExtras?(area: HTMLElement): void;
+  /** Builds the GPU renderer once the device exists. Absent: the widget always draws on the CPU. */
+  createRenderer?(gpu: GpuContext): Renderer;
+  /**
+   * One frame on the GPU. Throwing switches the widget to the CPU for good (with the
+   * reason in its notice); null means the frame reports itself later (context.report).
+   */
+  renderGpu?(renderer: Renderer, gpu: GpuContext): Promise<Frame | null>;
+  /** One frame with the float64 CPU twin (no WebGPU, ?backend=cpu, or after a loss). */
+  renderCpu(): Promise<Frame | null> | Frame | null;
+  /** The sentence after "WebGPU is not available (reason)." while drawing on the CPU. */
+  readonly cpuNotice: string;
+  /** Draws what the readouts do not: plots, accessible descriptions of the canvases. */
+  show?(frame: Frame, backend: FrameBackend): void;
+  /** Draws the parts that draw on their own schedule before printing (see WidgetElement.drawForPrint). */
+  drawForPrint?(): Promise<void>;
+  /** Releases the GPU renderer's resources (device loss, destroy). */
+  destroyRenderer?(renderer: Renderer): void;
+  /** Stops the view's own work when the widget is destroyed (timers, workers). */
+  destroy?(): void;
+}
+
+/**
+ * What a widget.ts load() resolves to: a view factory (the widget is built by the
+ * base from its definition), or, while a widget is being ported, its old element
+ * class (it keeps its own shell code and is defined under the definition's name).
+ */
+export type WidgetModule<Frame> =
+  { createView(context: ViewContext): WidgetView<Frame> } | { element: CustomElementConstructor };
+
+/** Parameter values as a view reads them (re-exported for views' convenience). */
+export type { ParameterValues };
