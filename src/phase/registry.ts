@@ -8,24 +8,25 @@
 //   (plan.ts CONDITION_NAMES and GENERAL_CONDITIONS take PHASE_CONDITIONS);
 // - the CPU twin's dispatch (src/reference/integrator.ts mediumPhaseEval/Sample calls
 //   `twin`), and the WGSL dispatch, which stays hand-written WGSL in
-//   shaders/integrator.wesl (mediumPhaseEval/mediumPhaseSample) because the kernels
-//   are linked from plain .wesl files: tests/phase/registry.test.ts fails unless every
-//   entry has its SCENE_PHASE_* constant equal to its index there, a case under its
-//   condition that returns exactly `wgsl.eval`/`wgsl.sample`, and library functions with
-//   twins; tests/shaders/phase-dispatch.test.ts runs that dispatch on the GPU against
-//   the twin for every entry's examples.
+//   shaders/integrator.wesl (mediumPhaseEval/mediumPhaseSample) because the kernels are
+//   linked from plain .wesl files. tests/reference/phase-registry.test.ts fails unless
+//   every entry has its SCENE_PHASE_* constant equal to its index there and a case under
+//   its condition that returns exactly `wgsl.eval`/`wgsl.sample`, calling library
+//   functions that have twins; tests/shaders/phase-dispatch.test.ts runs that dispatch
+//   on the GPU against the twin for every entry's examples.
 //
 // The first entry is the default (a medium without `phase`) and the fallback of the
 // WGSL dispatch: it needs no condition, and a kind whose condition a kernel was not
 // linked with scatters as it (the planner never lets that happen).
 //
 // Tabulated phase functions (issue 21, e.g. Mie from a table) plug in as one more entry
-// whose record uses `table`: a parameter kind 'table' next to 'number' in
-// PhaseParameter, whose JSON value names a file under public/ (checked like grid files
-// in validate.ts, read by load.ts into the resolved scene), appended to a phase-table
-// storage buffer that a new integrator binding exposes under the entry's condition;
-// packPhase writes the table's offset into PhaseRecord.table, and the entry's WGSL
-// eval/sample read the table at that offset (the twin reads the same array).
+// that uses PhaseRecord.table: PhaseParameter gains a kind ('real', as now, or
+// 'table'); a table parameter's JSON value names a file under public/ (checked like grid
+// files in validate.ts, read by load.ts into the resolved scene); pack.ts appends the
+// tables to one phase-table storage buffer, which a new integrator binding exposes under
+// the entry's condition, and packPhase writes the table's offset; the entry's WGSL
+// eval/sample read the table from that offset, and its twin reads the same array (which
+// SceneData then carries next to the density grid).
 import { sampleUniformSphere, type Vec3 } from '../reference/directions.ts';
 import {
   hgEvalDirections,

@@ -1,0 +1,457 @@
+// The phase-function registry (src/phase/registry.ts) against everything that must agree
+// with it, for every entry, so that a new entry is checked without a new test:
+// - shaders/integrator.wesl: a SCENE_PHASE_* constant equal to the entry's index, and in
+//   mediumPhaseEval/mediumPhaseSample a case under the entry's condition that returns
+//   exactly its `wgsl` expressions (the first entry is the fallback, with no condition);
+//   each function called is imported from a library module that declares it and whose
+//   twin (src/reference/<module>.ts) exports it;
+// - the planner's condition list and general kernel;
+// - validation: each example is accepted and round-trips, each parameter is range-checked
+//   with a message naming the field;
+// - the float64 twin: normalisation ∫p dω = 1 by quadrature, and samples distributed as
+//   the evaluation (chi-square in μ and in the azimuth);
+// - the old scene format: the public scenes and inline `phase` objects written before the
+//   registry pack to the tags and values the old packer wrote (isotropic 0, HG 1 with g in
+//   the next word, Rayleigh 2) and the twin dispatches them to the same functions.
+// The GPU side of the dispatch is run in tests/shaders/phase-dispatch.test.ts.
+import { readFileSync, readdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { describe, expect, it } from 'vitest';
+import {
+  DEFAULT_PHASE,
+  PHASE_CONDITIONS,
+  PHASE_FUNCTIONS,
+  PHASE_IDS,
+  packPhase,
+  phaseTag,
+  type PhaseDescription,
+  type PhaseRecord,
+} from '../../src/phase/registry.ts';
+import {
+  directionAroundAxis,
+  orthonormalBasis,
+  type Vec3,
+} from '../../src/reference/directions.ts';
+import {
+  mediumPhaseEval,
+  mediumPhaseSample,
+  sceneMedium,
+  type SceneData,
+} from '../../src/reference/integrator.ts';
+import {
+  hgEvalDirections,
+  hgSample,
+  phaseIsotropic,
+  rayleighEval,
+  rayleighSample,
+} from '../../src/reference/phase.ts';
+import { sampleUniformSphere } from '../../src/reference/directions.ts';
+import { rngNextFloat, rngSeed } from '../../src/reference/rng.ts';
+import { loadSceneFile, PUBLIC_DIRECTORY } from '../../src/scene/loadNode.ts';
+import { resolveScene } from '../../src/scene/load.ts';
+import { packScene, sceneData } from '../../src/scene/pack.ts';
+import { CONDITION_NAMES, GENERAL_CONDITIONS, plan } from '../../src/scene/plan.ts';
+import { parseScene, validateScene } from '../../src/scene/validate.ts';
+import { chiSquareSurvival } from '../../src/statistics/distributions.ts';
+
+const SHADERS = fileURLToPath(new URL('../../shaders/', import.meta.url));
+const INTEGRATOR = readFileSync(join(SHADERS, 'integrator.wesl'), 'utf8');
+
+/** The body of `fn name(...)` in WGSL source, up to its closing brace at column 0. */
+function functionBody(source: string, name: string): string {
+  const start = source.indexOf(`fn ${name}(`);
+  expect(start, `fn ${name} in integrator.wesl`).toBeGreaterThanOrEqual(0);
+  const end = source.indexOf('\n}\n', start);
+  return source.slice(start, end + 2);
+}
+
+interface DispatchCase {
+  condition: string;
+  tag: string;
+  returned: string;
+}
+
+/** `@if(cond) { if (medium.phase.kind == TAG) { return EXPR; } }` cases, and the fallback. */
+function dispatchOf(body: string): { cases: DispatchCase[]; fallback: string | undefined } {
+  const pattern =
+    /@if\((\w+)\)\s*\{\s*if \(medium\.phase\.kind == (\w+)\) \{\s*return ([^;]+);\s*\}\s*\}/g;
+  const cases = [...body.matchAll(pattern)].map((m) => ({
+    condition: m[1]!,
+    tag: m[2]!,
+    returned: m[3]!.trim(),
+  }));
+  const fallback = /return ([^;]+);\s*\}\s*$/.exec(body)?.[1]?.trim();
+  return { cases, fallback };
+}
+
+/** The functions integrator.wesl imports, with the module of each. */
+function integratorImports(): Map<string, string> {
+  const imports = new Map<string, string>();
+  for (const m of INTEGRATOR.matchAll(/import package::(\w+)::(\{[^}]*\}|\w+);/g)) {
+    for (const name of m[2]!
+      .replace(/[{}\s]/g, '')
+      .split(',')
+      .filter(Boolean))
+      imports.set(name, m[1]!);
+  }
+  return imports;
+}
+
+const calledFunction = (expression: string): string => /^(\w+)\(/.exec(expression)?.[1] ?? '';
+
+describe('the registry and the WGSL dispatch of integrator.wesl agree', () => {
+  const constants = new Map(
+    [...INTEGRATOR.matchAll(/const (SCENE_PHASE_\w+): u32 = (\d+)u;/g)].map((m) => [
+      m[1]!,
+      Number(m[2]),
+    ]),
+  );
+
+  it('each entry has its tag constant equal to its index, and there are no others', () => {
+    PHASE_FUNCTIONS.forEach((entry, index) => {
+      expect(constants.get(entry.wgsl.tag), `${entry.id}: ${entry.wgsl.tag}`).toBe(index);
+      expect(phaseTag(entry.id)).toBe(index);
+    });
+    expect([...constants.keys()].sort()).toEqual(PHASE_FUNCTIONS.map((e) => e.wgsl.tag).sort());
+  });
+
+  it('only the first entry (the default and fallback) has no condition', () => {
+    expect(PHASE_FUNCTIONS[0].condition).toBeNull();
+    expect(DEFAULT_PHASE).toEqual({ type: PHASE_FUNCTIONS[0].id });
+    for (const entry of PHASE_FUNCTIONS.slice(1)) expect(entry.condition, entry.id).not.toBeNull();
+    expect(new Set(PHASE_IDS).size).toBe(PHASE_IDS.length);
+    expect(new Set(PHASE_CONDITIONS).size).toBe(PHASE_CONDITIONS.length);
+  });
+
+  for (const [fn, field] of [
+    ['mediumPhaseEval', 'eval'],
+    ['mediumPhaseSample', 'sample'],
+  ] as const) {
+    it(`${fn}: one case per conditioned entry, in registry order, returning its wgsl.${field}`, () => {
+      const { cases, fallback } = dispatchOf(functionBody(INTEGRATOR, fn));
+      expect(cases).toEqual(
+        PHASE_FUNCTIONS.slice(1).map((entry) => ({
+          condition: entry.condition,
+          tag: entry.wgsl.tag,
+          returned: entry.wgsl[field],
+        })),
+      );
+      expect(fallback).toBe(PHASE_FUNCTIONS[0].wgsl[field]);
+    });
+  }
+
+  it('every @if(phase…) condition in integrator.wesl is a registry condition', () => {
+    const used = new Set([...INTEGRATOR.matchAll(/@if\((phase\w+)\)/g)].map((m) => m[1]));
+    expect([...used].sort()).toEqual([...PHASE_CONDITIONS].sort());
+  });
+
+  it('each called function is imported from a module that declares it, and its twin exists', async () => {
+    const imports = integratorImports();
+    for (const entry of PHASE_FUNCTIONS) {
+      for (const expression of [entry.wgsl.eval, entry.wgsl.sample]) {
+        const name = calledFunction(expression);
+        const module = imports.get(name);
+        expect(module, `${entry.id}: integrator.wesl imports ${name}`).toBeDefined();
+        const source = readFileSync(join(SHADERS, `${module}.wesl`), 'utf8');
+        expect(source, `shaders/${module}.wesl declares ${name}`).toMatch(
+          new RegExp(`\\bfn ${name}\\(`),
+        );
+        const twin = (await import(`../../src/reference/${module}.ts`)) as Record<string, unknown>;
+        expect(typeof twin[name], `src/reference/${module}.ts exports ${name}`).toBe('function');
+      }
+    }
+  });
+
+  it('the planner lists every phase condition, and the general kernel links each', () => {
+    for (const condition of PHASE_CONDITIONS) {
+      expect(CONDITION_NAMES).toContain(condition);
+      expect(GENERAL_CONDITIONS[condition]).toBe(true);
+    }
+  });
+});
+
+/** A minimal valid scene with one scattering medium of the given `phase`. */
+function sceneWith(phase: unknown): Record<string, unknown> {
+  return {
+    image: { width: 4, height: 4 },
+    samplesPerPixel: 4,
+    scatteringOrder: 1,
+    camera: {
+      type: 'perspective',
+      position: [0, 0, 5],
+      target: [0, 0, 0],
+      up: [0, 1, 0],
+      fovY: 40,
+    },
+    media: [
+      {
+        type: 'homogeneous',
+        bounds: { type: 'box', min: [-1, -1, -1], max: [1, 1, 1] },
+        sigmaA: [0.1, 0.1, 0.1],
+        sigmaS: [1, 1, 1],
+        ...(phase === undefined ? {} : { phase }),
+      },
+    ],
+    lights: [{ type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] }],
+  };
+}
+
+const errorsOf = (scene: unknown): string[] => {
+  const result = validateScene(scene);
+  return result.ok ? [] : result.errors;
+};
+
+describe('validation and packing follow each entry’s schema', () => {
+  for (const entry of PHASE_FUNCTIONS) {
+    for (const example of entry.examples) {
+      const phase = { type: entry.id, ...example } as PhaseDescription;
+      it(`${JSON.stringify(phase)} is accepted, planned and packed in schema order`, () => {
+        const result = validateScene(sceneWith(phase));
+        expect(result.ok ? [] : result.errors).toEqual([]);
+        if (!result.ok) return;
+        expect(result.scene.media[0]?.phase).toEqual(phase);
+        const conditions = plan(result.scene).conditions;
+        for (const other of PHASE_FUNCTIONS)
+          if (other.condition !== null)
+            expect(conditions[other.condition], other.condition).toBe(other === entry);
+        const record = packPhase(phase);
+        expect(record.kind).toBe(phaseTag(entry.id));
+        expect(record.table).toBe(0);
+        entry.parameters.forEach((p, k) => expect(record.values[k]).toBe(phase[p.name as never]));
+        expect(record.values.slice(entry.parameters.length).every((v) => v === 0)).toBe(true);
+      });
+    }
+    for (const parameter of entry.parameters) {
+      it(`${entry.id}.${parameter.name} is required and range-checked`, () => {
+        const example = entry.examples[0] as Record<string, number>;
+        const path = `media[0].phase.${parameter.name}`;
+        const rest = Object.fromEntries(
+          Object.entries(example).filter(([name]) => name !== parameter.name),
+        );
+        expect(errorsOf(sceneWith({ type: entry.id, ...rest })).join('\n')).toContain(
+          `${path}: missing`,
+        );
+        for (const bad of [parameter.max + 1e-3, parameter.min - 1e-3, 'x'])
+          expect(
+            errorsOf(sceneWith({ type: entry.id, ...example, [parameter.name]: bad })).join('\n'),
+          ).toContain(`${path} = ${JSON.stringify(bad)}: must be`);
+      });
+    }
+    it(`${entry.id} refuses unknown fields`, () => {
+      expect(errorsOf(sceneWith({ ...entry.examples[0], type: entry.id, colour: 1 }))).toEqual([
+        `media[0].phase.colour: unknown field (allowed: ${['type', ...entry.parameters.map((p) => p.name)].join(', ')})`,
+      ]);
+    });
+  }
+
+  it('an unknown type lists the registry’s ids', () => {
+    expect(errorsOf(sceneWith({ type: 'mie' }))).toEqual([
+      `media[0].phase.type = "mie": must be one of ${PHASE_IDS.map((id) => JSON.stringify(id)).join(', ')}`,
+    ]);
+  });
+});
+
+// ---------------------------------------------------------------------------
+// The twin of every entry: normalisation and sampling against its own evaluation.
+// ---------------------------------------------------------------------------
+const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const WO: Vec3 = (() => {
+  const v = [0.3, -0.5, 0.81];
+  const n = Math.hypot(...v);
+  return [v[0]! / n, v[1]! / n, v[2]! / n];
+})();
+const TRAVEL: Vec3 = [-WO[0], -WO[1], -WO[2]];
+
+/** 16-point Gauss–Legendre nodes and weights on [−1, 1] (Newton on P_16). */
+const GAUSS = (() => {
+  const n = 16;
+  const nodes: number[] = [];
+  const weights: number[] = [];
+  for (let i = 1; i <= n; i++) {
+    let x = Math.cos((Math.PI * (i - 0.25)) / (n + 0.5));
+    let derivative = 1;
+    for (let iteration = 0; iteration < 100; iteration++) {
+      let p0 = 1;
+      let p1 = x;
+      for (let k = 2; k <= n; k++) [p0, p1] = [p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k];
+      derivative = (n * (x * p1 - p0)) / (x * x - 1);
+      const step = p1 / derivative;
+      x -= step;
+      if (Math.abs(step) < 1e-16) break;
+    }
+    nodes.push(x);
+    weights.push(2 / ((1 - x * x) * derivative * derivative));
+  }
+  return { nodes, weights };
+})();
+
+/** ∫ 2π p(μ) dμ over [a, b] (p of a rotationally symmetric phase function), 64 panels. */
+function probability(p: (mu: number) => number, a: number, b: number): number {
+  const panels = 64;
+  let sum = 0;
+  for (let k = 0; k < panels; k++) {
+    const lo = a + ((b - a) * k) / panels;
+    const half = (b - a) / panels / 2;
+    GAUSS.nodes.forEach((x, i) => (sum += GAUSS.weights[i]! * half * p(lo + half * (1 + x))));
+  }
+  return 2 * Math.PI * sum;
+}
+
+function chiSquare(counts: readonly number[], expected: readonly number[]): number {
+  return counts.reduce((s, c, k) => s + (c - expected[k]!) ** 2 / expected[k]!, 0);
+}
+
+const MU_BINS = 20;
+const PHI_BINS = 8;
+const SAMPLES = 40_000;
+const EXAMPLES = PHASE_FUNCTIONS.reduce((n, e) => n + e.examples.length, 0);
+/** Two chi-square tests per example, family-wise α = 0.01. */
+const ALPHA = 0.01 / (2 * EXAMPLES);
+
+describe('every entry’s twin is normalised and samples its own density', () => {
+  PHASE_FUNCTIONS.forEach((entry) => {
+    entry.examples.forEach((example) => {
+      const record: PhaseRecord = packPhase({ type: entry.id, ...example } as PhaseDescription);
+      const p = (mu: number): number =>
+        entry.twin.eval(record, WO, directionAroundAxis(TRAVEL, mu, Math.sqrt(1 - mu * mu), 0.37));
+      const label = `${entry.id} ${JSON.stringify(example)}`;
+
+      it(`${label}: ∫ p dω = 1 and p does not depend on the azimuth`, () => {
+        expect(probability(p, -1, 1)).toBeCloseTo(1, 6);
+        for (const mu of [-0.8, 0, 0.6]) {
+          const s = Math.sqrt(1 - mu * mu);
+          const other = entry.twin.eval(record, WO, directionAroundAxis(TRAVEL, mu, s, 0.81));
+          expect(other).toBeCloseTo(p(mu), 10);
+        }
+      });
+
+      it(`${label}: ${SAMPLES} samples follow p in μ (${MU_BINS} bins) and are uniform in azimuth (${PHI_BINS} bins)`, () => {
+        const expectedMu = Array.from(
+          { length: MU_BINS },
+          (_, k) => SAMPLES * probability(p, -1 + (2 * k) / MU_BINS, -1 + (2 * (k + 1)) / MU_BINS),
+        );
+        const muCounts = new Array<number>(MU_BINS).fill(0);
+        const phiCounts = new Array<number>(PHI_BINS).fill(0);
+        const { tangent, bitangent } = orthonormalBasis(TRAVEL);
+        let lengthError = 0;
+        for (let i = 0; i < SAMPLES; i++) {
+          const state = { value: rngSeed(i, 7) };
+          const wi = entry.twin.sample(record, WO, [rngNextFloat(state), rngNextFloat(state)]);
+          lengthError = Math.max(lengthError, Math.abs(Math.hypot(...wi) - 1));
+          const mu = -dot(WO, wi);
+          muCounts[Math.min(MU_BINS - 1, Math.floor(((mu + 1) / 2) * MU_BINS))]! += 1;
+          const phi = Math.atan2(dot(wi, bitangent), dot(wi, tangent));
+          phiCounts[
+            Math.min(PHI_BINS - 1, Math.floor(((phi + Math.PI) / (2 * Math.PI)) * PHI_BINS))
+          ]! += 1;
+        }
+        expect(lengthError, 'every wi is a unit vector').toBeLessThan(1e-12);
+        const muStatistic = chiSquare(muCounts, expectedMu);
+        expect(
+          chiSquareSurvival(muStatistic, MU_BINS - 1),
+          `χ² in μ = ${muStatistic}`,
+        ).toBeGreaterThan(ALPHA);
+        const phiStatistic = chiSquare(
+          phiCounts,
+          new Array<number>(PHI_BINS).fill(SAMPLES / PHI_BINS),
+        );
+        expect(
+          chiSquareSurvival(phiStatistic, PHI_BINS - 1),
+          `χ² in φ = ${phiStatistic}`,
+        ).toBeGreaterThan(ALPHA);
+      });
+    });
+  });
+
+  it('the chi-square test rejects a sampler that does not follow the density', () => {
+    // HG g = 0.3 evaluated, isotropic sampled: the test above must fail on such a pair.
+    const hg = packPhase({ type: 'henyey-greenstein', g: 0.3 });
+    const p = (mu: number): number =>
+      hgEvalDirections(
+        hg.values[0],
+        WO,
+        directionAroundAxis(TRAVEL, mu, Math.sqrt(1 - mu * mu), 0),
+      );
+    const counts = new Array<number>(MU_BINS).fill(0);
+    for (let i = 0; i < SAMPLES; i++) {
+      const state = { value: rngSeed(i, 7) };
+      const mu = -dot(WO, sampleUniformSphere([rngNextFloat(state), rngNextFloat(state)]));
+      counts[Math.min(MU_BINS - 1, Math.floor(((mu + 1) / 2) * MU_BINS))]! += 1;
+    }
+    const expected = Array.from(
+      { length: MU_BINS },
+      (_, k) => SAMPLES * probability(p, -1 + (2 * k) / MU_BINS, -1 + (2 * (k + 1)) / MU_BINS),
+    );
+    expect(chiSquareSurvival(chiSquare(counts, expected), MU_BINS - 1)).toBeLessThan(ALPHA);
+  });
+});
+
+// ---------------------------------------------------------------------------
+// The scene format from before the registry.
+// ---------------------------------------------------------------------------
+/** The tags and the dispatch the renderer had before the registry (commit 5259338). */
+const OLD_TAGS = { isotropic: 0, 'henyey-greenstein': 1, rayleigh: 2 } as const;
+
+function oldEval(phase: { type: string; g?: number }, wo: Vec3, wi: Vec3): number {
+  if (phase.type === 'henyey-greenstein') return hgEvalDirections(Math.fround(phase.g!), wo, wi);
+  if (phase.type === 'rayleigh') return rayleighEval(-dot(wo, wi));
+  return phaseIsotropic();
+}
+
+function oldSample(phase: { type: string; g?: number }, wo: Vec3, u: [number, number]): Vec3 {
+  if (phase.type === 'henyey-greenstein') return hgSample(Math.fround(phase.g!), wo, u).wi;
+  if (phase.type === 'rayleigh') return rayleighSample(wo, u).wi;
+  return sampleUniformSphere(u);
+}
+
+/** The packed medium's first-record words and its twin dispatch vs the old ones. */
+function expectOldBehaviour(
+  data: SceneData,
+  index: number,
+  phase: { type: string; g?: number },
+): void {
+  const medium = sceneMedium(data, index);
+  expect(medium.phase.kind).toBe(OLD_TAGS[phase.type as keyof typeof OLD_TAGS]);
+  expect(medium.phase.values).toEqual([
+    phase.type === 'henyey-greenstein' ? Math.fround(phase.g!) : 0,
+    0,
+    0,
+  ]);
+  expect(medium.phase.table).toBe(0);
+  for (let i = 0; i < 16; i++) {
+    const state = { value: rngSeed(i, 11) };
+    const u: [number, number] = [rngNextFloat(state), rngNextFloat(state)];
+    const wi = sampleUniformSphere([rngNextFloat(state), rngNextFloat(state)]);
+    expect(mediumPhaseEval(data, medium, WO, wi)).toBe(oldEval(phase, WO, wi));
+    expect(mediumPhaseSample(data, medium, WO, u)).toEqual(oldSample(phase, WO, u));
+  }
+}
+
+describe('scenes written before the registry load and dispatch as before', () => {
+  const folder = join(PUBLIC_DIRECTORY, 'scenes');
+  const files = readdirSync(folder).filter((file) => file.endsWith('.json'));
+
+  it.each(files)('public/scenes/%s', async (file) => {
+    const json = JSON.parse(readFileSync(join(folder, file), 'utf8')) as {
+      media?: { phase?: { type: string; g?: number } }[];
+    };
+    const resolved = await loadSceneFile(join(folder, file));
+    const data = sceneData(packScene(resolved), plan(resolved.scene).conditions);
+    (json.media ?? []).forEach((medium, i) =>
+      expectOldBehaviour(data, i, medium.phase ?? { type: 'isotropic' }),
+    );
+  });
+
+  it.each([
+    ['no phase (isotropic by default)', undefined],
+    ['Henyey–Greenstein g = 0.85', { type: 'henyey-greenstein', g: 0.85 }],
+    ['Henyey–Greenstein g = −0.3', { type: 'henyey-greenstein', g: -0.3 }],
+    ['Rayleigh', { type: 'rayleigh' }],
+    ['isotropic, explicit', { type: 'isotropic' }],
+  ] as const)('%s', async (_name, phase) => {
+    const resolved = await resolveScene(parseScene(sceneWith(phase)));
+    const data = sceneData(packScene(resolved), GENERAL_CONDITIONS);
+    expectOldBehaviour(data, 0, phase ?? { type: 'isotropic' });
+  });
+});
