@@ -163,6 +163,15 @@ describe('the registry and the WGSL dispatch of integrator.wesl agree', () => {
     }
   });
 
+  it('README "Scenes" names every phase function', () => {
+    const readme = readFileSync(fileURLToPath(new URL('../../README.md', import.meta.url)), 'utf8');
+    const scenes = readme.slice(
+      readme.indexOf('## Scenes'),
+      readme.indexOf('\n## ', readme.indexOf('## Scenes') + 1),
+    );
+    for (const id of PHASE_IDS) expect(scenes, id).toContain(`\`${id}\``);
+  });
+
   it('the planner lists every phase condition, and the general kernel links each', () => {
     for (const condition of PHASE_CONDITIONS) {
       expect(CONDITION_NAMES).toContain(condition);
