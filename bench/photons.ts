@@ -22,6 +22,7 @@ import {
   progressiveRadius,
   rmse,
 } from '../src/widgets/photon-map/model.ts';
+import { logLogSlope } from '../src/statistics/regression.ts';
 import { median, type BenchTable } from './table.ts';
 
 export interface PhotonBenchOptions {
@@ -193,20 +194,4 @@ export async function benchPhotons(
 
 function percent(change: number): string {
   return `${change >= 0 ? '+' : '−'}${Math.abs(100 * change).toFixed(0)} %`;
-}
-
-/** Least-squares slope of log y against log x (so y ∝ x^slope); null with < 2 points. */
-function logLogSlope(x: readonly number[], y: readonly number[]): number | null {
-  if (x.length < 2) return null;
-  const lx = x.map(Math.log);
-  const ly = y.map(Math.log);
-  const mx = lx.reduce((a, b) => a + b, 0) / lx.length;
-  const my = ly.reduce((a, b) => a + b, 0) / ly.length;
-  let sxy = 0;
-  let sxx = 0;
-  for (let i = 0; i < lx.length; i++) {
-    sxy += (lx[i]! - mx) * (ly[i]! - my);
-    sxx += (lx[i]! - mx) ** 2;
-  }
-  return sxx > 0 ? sxy / sxx : null;
 }

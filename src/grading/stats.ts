@@ -4,6 +4,7 @@
 // stratification jitter.
 
 import { chiSquareCritical, chiSquareSurvival } from '../statistics/distributions.ts';
+import { moments } from '../statistics/summary.ts';
 
 export interface ChiSquareResult {
   statistic: number;
@@ -51,14 +52,14 @@ export interface Moments {
   variance: number;
 }
 
+/**
+ * Mean and unbiased variance (src/statistics/summary.ts). A single value's variance
+ * is taken as 0 here, not NaN: the checks draw thousands of values, and a variance
+ * check of one value then fails on its z rather than on a NaN.
+ */
 export function sampleMoments(values: readonly number[]): Moments {
-  const n = values.length;
-  let mean = 0;
-  for (const v of values) mean += v;
-  mean /= n;
-  let squares = 0;
-  for (const v of values) squares += (v - mean) * (v - mean);
-  return { n, mean, variance: n > 1 ? squares / (n - 1) : 0 };
+  const { n, mean, variance } = moments(values);
+  return { n, mean, variance: n > 1 ? variance : 0 };
 }
 
 /**

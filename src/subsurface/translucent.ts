@@ -18,6 +18,8 @@ import {
   dipoleTotalReflectance,
   type DipoleParameters,
 } from '../reference/dipole.ts';
+import { relativeRmse, rmse } from '../statistics/errors.ts';
+import { mean } from '../statistics/summary.ts';
 
 export type Vec3 = [number, number, number];
 
@@ -435,23 +437,21 @@ export function imageError(
   reference: ArrayLike<number>,
   mask: Uint8Array,
 ): ImageError {
-  let squares = 0;
-  let sum = 0;
-  let sumReference = 0;
-  let count = 0;
-  mask.forEach((inside, p) => {
-    if (!inside) return;
+  // The channels of the pixels inside the mask, then the shared statistics on them.
+  const inside: number[] = [];
+  const insideReference: number[] = [];
+  mask.forEach((flag, p) => {
+    if (!flag) return;
     for (let c = 0; c < 3; c++) {
-      const a = image[3 * p + c]!;
-      const b = reference[3 * p + c]!;
-      squares += (a - b) ** 2;
-      sum += a;
-      sumReference += b;
-      count += 1;
+      inside.push(image[3 * p + c]!);
+      insideReference.push(reference[3 * p + c]!);
     }
   });
-  if (count === 0 || !(sumReference > 0)) return { rmse: NaN, relativeRmse: NaN, meanError: NaN };
-  const rmse = Math.sqrt(squares / count);
-  const meanReference = sumReference / count;
-  return { rmse, relativeRmse: rmse / meanReference, meanError: sum / sumReference - 1 };
+  const meanReference = mean(insideReference);
+  if (!(meanReference > 0)) return { rmse: NaN, relativeRmse: NaN, meanError: NaN };
+  return {
+    rmse: rmse(inside, insideReference),
+    relativeRmse: relativeRmse(inside, insideReference),
+    meanError: mean(inside) / meanReference - 1,
+  };
 }

@@ -11,25 +11,10 @@ import { LinePlot } from './plot.ts';
 export const SWEEP_POINTS = [1, 2, 4, 8, 16, 32, 64, 128, 256] as const;
 
 /**
- * Least-squares slope of log error against log n, so error ∝ n^slope.
- * Points with a zero (or non-finite) error are left out; null with fewer than
- * two usable points or when all n are equal.
+ * Least-squares slope of log error against log n (error ∝ n^slope), from
+ * src/statistics/regression.ts; re-exported for the sweeps' callers.
  */
-export function logLogSlope(n: readonly number[], errors: readonly number[]): number | null {
-  const points = n
-    .map((x, i) => [Math.log(x), Math.log(errors[i] ?? 0)] as const)
-    .filter(([, y]) => Number.isFinite(y));
-  if (points.length < 2) return null;
-  const meanX = points.reduce((s, [x]) => s + x, 0) / points.length;
-  const meanY = points.reduce((s, [, y]) => s + y, 0) / points.length;
-  let sxy = 0;
-  let sxx = 0;
-  for (const [x, y] of points) {
-    sxy += (x - meanX) * (y - meanY);
-    sxx += (x - meanX) ** 2;
-  }
-  return sxx > 0 ? sxy / sxx : null;
-}
+export { logLogSlope } from '../../statistics/regression.ts';
 
 /** One measured point of a sweep. */
 export interface SweepPoint {

@@ -11,6 +11,7 @@ import {
 } from '../../reference/medium.ts';
 import { MARCH_JITTERED_RAY, raymarchOpticalDepth } from '../../reference/raymarch.ts';
 import { rngSeed } from '../../reference/rng.ts';
+import { rmse } from '../../statistics/errors.ts';
 import {
   TRACKING_MAX_STEPS,
   transmittanceDeltaTracking,
@@ -265,19 +266,16 @@ export function imageStatistics(
   variance: ArrayLike<number>,
 ): ImageStatistics {
   const pixels = exact.length;
-  let squares = 0;
   let sum = 0;
   let varianceSum = 0;
   let largest = 0;
   for (let i = 0; i < pixels; i++) {
-    const error = image.mean[i]! - exact[i]!;
-    squares += error * error;
-    sum += error;
+    sum += image.mean[i]! - exact[i]!;
     varianceSum += variance[i]!;
     largest = Math.max(largest, variance[i]!);
   }
   return {
-    rmse: Math.sqrt(squares / pixels),
+    rmse: rmse(image.mean, exact),
     bias: sum / pixels,
     // Var(mean of the pixel means) = Σ Var_p/spp / P².
     biasError: Math.sqrt(varianceSum / image.spp) / pixels,

@@ -542,12 +542,8 @@ export function pathTraceCpu(
   return { sum, sumSq };
 }
 
-/** Root-mean-square difference of two images (over all pixels). */
-export function rmse(a: ArrayLike<number>, b: ArrayLike<number>): number {
-  let s = 0;
-  for (let i = 0; i < a.length; i++) s += (a[i]! - b[i]!) ** 2;
-  return Math.sqrt(s / Math.max(a.length, 1));
-}
+/** Root-mean-square difference of two images (over all pixels): src/statistics. */
+export { rmse } from '../../statistics/errors.ts';
 
 /** Box-filter downsampling by an integer factor (the CPU fallback's reference). */
 export function downsample(

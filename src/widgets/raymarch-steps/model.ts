@@ -14,7 +14,8 @@ import {
 import { rngSeed } from '../../reference/rng.ts';
 import type { ParameterValues } from '../parameters.ts';
 import { interpolate, type Rgb } from '../base/imagePanel.ts';
-import { SWEEP_POINTS, logLogSlope } from '../base/sweep.ts';
+import { logLogSlope } from '../../statistics/regression.ts';
+import { SWEEP_POINTS } from '../base/sweep.ts';
 
 /** Image size of the GPU path; the CPU fallback draws 1/CPU_SCALE of it. */
 export const IMAGE_WIDTH = 256;
@@ -152,20 +153,8 @@ export function referenceImageCpu(width: number, height: number, density: number
   return cached;
 }
 
-/** Root-mean-square difference of two images of the same size. */
-export function rmse(image: ArrayLike<number>, reference: ArrayLike<number>): number {
-  let sum = 0;
-  for (let i = 0; i < reference.length; i++) sum += (image[i]! - reference[i]!) ** 2;
-  return Math.sqrt(sum / Math.max(reference.length, 1));
-}
-
-/** Largest absolute difference of two images. */
-export function maxError(image: ArrayLike<number>, reference: ArrayLike<number>): number {
-  let worst = 0;
-  for (let i = 0; i < reference.length; i++)
-    worst = Math.max(worst, Math.abs(image[i]! - reference[i]!));
-  return worst;
-}
+/** Root-mean-square and largest absolute difference of two images: src/statistics. */
+export { maxAbsoluteError as maxError, rmse } from '../../statistics/errors.ts';
 
 /**
  * The least-squares slope of log RMSE against log N over the points with RMSE > 0:

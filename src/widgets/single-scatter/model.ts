@@ -174,12 +174,8 @@ export function sceneKey(inputs: SingleScatterInputs): string {
   return JSON.stringify({ ...inputs, spp: null });
 }
 
-/** Root-mean-square difference over all pixels and channels. */
-export function rmse(image: ArrayLike<number>, reference: ArrayLike<number>): number {
-  let sum = 0;
-  for (let i = 0; i < image.length; i++) sum += (image[i]! - reference[i]!) ** 2;
-  return Math.sqrt(sum / Math.max(image.length, 1));
-}
+/** Root-mean-square difference over all pixels and channels: src/statistics. */
+export { rmse } from '../../statistics/errors.ts';
 
 /** Root-mean-square of the per-pixel standard errors (NaN entries, n < 2, are skipped). */
 export function rmsStandardError(errors: ArrayLike<number>): number {

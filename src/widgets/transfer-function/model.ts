@@ -440,20 +440,8 @@ export function renderImageCpu(
   return image;
 }
 
-/** Root-mean-square difference over all pixels and the three channels. */
-export function rmse(image: ArrayLike<number>, reference: ArrayLike<number>): number {
-  let sum = 0;
-  for (let i = 0; i < reference.length; i++) sum += (image[i]! - reference[i]!) ** 2;
-  return Math.sqrt(sum / Math.max(reference.length, 1));
-}
-
-/** Largest absolute difference of any channel of any pixel. */
-export function maxError(image: ArrayLike<number>, reference: ArrayLike<number>): number {
-  let worst = 0;
-  for (let i = 0; i < reference.length; i++)
-    worst = Math.max(worst, Math.abs(image[i]! - reference[i]!));
-  return worst;
-}
+/** Root-mean-square and largest difference over all pixels and channels: src/statistics. */
+export { maxAbsoluteError as maxError, rmse } from '../../statistics/errors.ts';
 
 /** 8-bit sRGB of pixel `index` of an image's planes (display values clamped to [0, 1]). */
 export function pixelColour(rgb: ArrayLike<number>, pixels: number, index: number): Rgb {
