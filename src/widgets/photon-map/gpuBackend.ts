@@ -2,11 +2,12 @@
 // dispatched in one compute pass (dispatches in a pass see each other's storage
 // writes): tracePhotons → countCells → prefixCells → scatterPhotons → gatherImage,
 // timed as one span (timestamp queries, else wall time), so the photon-mapping time
-// includes building the map. pathTrace runs alone, timed the same way. Buffers are
-// created per call and destroyed after it; the tests call the same functions on
-// Dawn's device.
+// includes building the map. pathTrace runs alone, timed the same way. Pipelines,
+// buffers and timers come from the GPU core (buffers leased per call, cleared to
+// zero as new ones would be, and reused by the next call); the tests call the same
+// functions on Dawn's device.
+import { gpuCore, type Lease } from '../../gpu/core.ts';
 import { withErrorScopes } from '../../gpu/errors.ts';
-import { GpuTimer } from '../../gpu/timing.ts';
 import type { GpuTiming } from '../base/imageKernel.ts';
 import {
   CAPACITY_PER_PHOTON,
@@ -69,48 +70,29 @@ export interface PhotonMapGpuResult {
   queries: Float32Array;
 }
 
-function storage(device: GPUDevice, bytes: number, extra = 0): GPUBuffer {
-  return device.createBuffer({
-    size: Math.max(16, Math.ceil(bytes / 16) * 16),
-    usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST | extra,
-  });
+/** Storage buffers are bound with their requested size, a multiple of 16 bytes. */
+function storageBytes(bytes: number): number {
+  return Math.max(16, Math.ceil(bytes / 16) * 16);
 }
 
-async function readBuffer(
-  device: GPUDevice,
-  source: GPUBuffer,
-  bytes: number,
-): Promise<ArrayBuffer> {
-  const size = Math.max(16, Math.ceil(bytes / 16) * 16);
-  const read = device.createBuffer({
-    size,
-    usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
-  });
-  const encoder = device.createCommandEncoder();
-  encoder.copyBufferToBuffer(source, 0, read, 0, size);
-  device.queue.submit([encoder.finish()]);
-  await read.mapAsync(GPUMapMode.READ);
-  const data = read.getMappedRange().slice(0, bytes);
-  read.unmap();
-  read.destroy();
-  return data;
+interface Bound {
+  buffer: GPUBuffer;
+  size: number;
 }
 
-const pipelines = new WeakMap<GPUDevice, Map<string, GPUComputePipeline>>();
+/** A zeroed storage buffer of the lease for `purpose`. */
+function storage(lease: Lease, purpose: string, bytes: number): Bound {
+  const size = storageBytes(bytes);
+  const usage = GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST;
+  return { buffer: lease.buffer(`photon-map.${purpose}`, size, usage, true), size };
+}
+
+function readBuffer(device: GPUDevice, source: GPUBuffer, bytes: number): Promise<ArrayBuffer> {
+  return gpuCore(device).read(source, bytes);
+}
 
 function pipeline(device: GPUDevice, code: string, entryPoint: string): GPUComputePipeline {
-  let perDevice = pipelines.get(device);
-  if (!perDevice) pipelines.set(device, (perDevice = new Map()));
-  const key = `${entryPoint}\n${code}`;
-  let p = perDevice.get(key);
-  if (!p) {
-    p = device.createComputePipeline({
-      layout: 'auto',
-      compute: { module: device.createShaderModule({ code }), entryPoint },
-    });
-    perDevice.set(key, p);
-  }
-  return p;
+  return gpuCore(device).computePipeline({ code, entryPoint });
 }
 
 /**
@@ -143,108 +125,99 @@ export async function renderPhotonMapGpu(
     : inputs;
   const params = packParams(runInputs, { width, height, seed: inputs.seed, samples, queryCount });
   if (options.photonsIn) params[48] = capacity;
-  const created: GPUBuffer[] = [];
-  const make = (bytes: number): GPUBuffer => {
-    const b = storage(device, bytes);
-    created.push(b);
-    return b;
-  };
-  const timer = new GpuTimer(device);
-  try {
-    const uniform = device.createBuffer({
-      size: params.byteLength,
-      usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
-    });
-    created.push(uniform);
-    device.queue.writeBuffer(uniform, 0, params);
-    const photons = make(capacity * RECORD_WORDS * 4);
-    const counters = make(16);
-    const cellCounts = make(cells * 4);
-    const cellStart = make((cells + 1) * 4);
-    const sorted = make(capacity * RECORD_WORDS * 4);
-    const imageWords = Math.max(width * height, 2 * queryCount);
-    const image = make(imageWords * 4);
-    const queries = make(Math.max(queryCount, 1) * 6 * 4);
-    if (options.photonsIn) {
-      device.queue.writeBuffer(photons, 0, options.photonsIn);
-      device.queue.writeBuffer(counters, 0, new Uint32Array([given, 0, 0, 0]));
-    }
-    if (options.queries) device.queue.writeBuffer(queries, 0, options.queries);
-    const resources: Record<number, GPUBuffer> = {
-      0: uniform,
-      1: photons,
-      2: counters,
-      3: cellCounts,
-      4: cellStart,
-      5: sorted,
-      6: image,
-      7: queries,
-    };
-    const bindings: Record<string, number[]> = {
-      tracePhotons: [0, 1, 2],
-      countCells: [0, 1, 2, 3],
-      prefixCells: [0, 3, 4],
-      scatterPhotons: [0, 1, 2, 3, 4, 5],
-      gatherImage: [0, 4, 5, 6],
-      queryPoints: [0, 4, 5, 6, 7],
-    };
-    const start = performance.now();
-    await withErrorScopes(device, 'photon map', () => {
-      const encoder = device.createCommandEncoder();
-      const pass = encoder.beginComputePass(timer.passDescriptor());
-      const dispatch = (entry: string, x: number, y = 1): void => {
-        const p = pipeline(device, code, entry);
-        pass.setPipeline(p);
-        pass.setBindGroup(
-          0,
-          device.createBindGroup({
-            layout: p.getBindGroupLayout(0),
-            entries: bindings[entry]!.map((binding) => ({
-              binding,
-              resource: { buffer: resources[binding]! },
-            })),
-          }),
-        );
-        pass.dispatchWorkgroups(Math.max(1, x), Math.max(1, y));
+  return gpuCore(device)
+    .lease()
+    .run(async (lease) => {
+      const timer = lease.timer();
+      const uniform = {
+        buffer: lease.upload('photon-map.params', params, GPUBufferUsage.UNIFORM),
+        size: params.byteLength,
       };
-      if (!options.photonsIn) dispatch('tracePhotons', Math.ceil(inputs.photons / 64));
-      dispatch('countCells', Math.ceil(capacity / 64));
-      dispatch('prefixCells', 1);
-      dispatch('scatterPhotons', Math.ceil(capacity / 64));
-      if (!options.skipImage) dispatch('gatherImage', Math.ceil(width / 8), Math.ceil(height / 8));
-      if (queryCount > 0) dispatch('queryPoints', Math.ceil(queryCount / 64));
-      pass.end();
-      timer.resolve(encoder);
-      device.queue.submit([encoder.finish()]);
-    });
-    const counterData = new Uint32Array(await readBuffer(device, counters, 4));
-    const wallMs = performance.now() - start;
-    const stored = Math.min(counterData[0]!, capacity);
-    const imageData = new Float32Array(await readBuffer(device, image, imageWords * 4));
-    const viewCount = Math.min(stored, options.viewCount ?? 0);
-    const view = new Float32Array(viewCount * 4);
-    if (viewCount > 0) {
-      const raw = new Float32Array(await readBuffer(device, photons, viewCount * RECORD_WORDS * 4));
-      const rawU32 = new Uint32Array(raw.buffer);
-      for (let i = 0; i < viewCount; i++) {
-        view.set(raw.subarray(i * RECORD_WORDS, i * RECORD_WORDS + 3), 4 * i);
-        view[4 * i + 3] = rawU32[i * RECORD_WORDS + 7]!;
+      const photons = storage(lease, 'photons', capacity * RECORD_WORDS * 4);
+      const counters = storage(lease, 'counters', 16);
+      const cellCounts = storage(lease, 'cellCounts', cells * 4);
+      const cellStart = storage(lease, 'cellStart', (cells + 1) * 4);
+      const sorted = storage(lease, 'sorted', capacity * RECORD_WORDS * 4);
+      const imageWords = Math.max(width * height, 2 * queryCount);
+      const image = storage(lease, 'image', imageWords * 4);
+      const queries = storage(lease, 'queries', Math.max(queryCount, 1) * 6 * 4);
+      if (options.photonsIn) {
+        device.queue.writeBuffer(photons.buffer, 0, options.photonsIn);
+        device.queue.writeBuffer(counters.buffer, 0, new Uint32Array([given, 0, 0, 0]));
       }
-    }
-    const gpuMs = await timer.read();
-    return {
-      image: imageData.slice(0, width * height),
-      stored,
-      overflow: Math.max(0, counterData[0]! - capacity),
-      view,
-      milliseconds: gpuMs ?? wallMs,
-      timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
-      queries: imageData.slice(0, 2 * queryCount),
-    };
-  } finally {
-    timer.destroy();
-    for (const b of created) b.destroy();
-  }
+      if (options.queries) device.queue.writeBuffer(queries.buffer, 0, options.queries);
+      const resources: Record<number, Bound> = {
+        0: uniform,
+        1: photons,
+        2: counters,
+        3: cellCounts,
+        4: cellStart,
+        5: sorted,
+        6: image,
+        7: queries,
+      };
+      const bindings: Record<string, number[]> = {
+        tracePhotons: [0, 1, 2],
+        countCells: [0, 1, 2, 3],
+        prefixCells: [0, 3, 4],
+        scatterPhotons: [0, 1, 2, 3, 4, 5],
+        gatherImage: [0, 4, 5, 6],
+        queryPoints: [0, 4, 5, 6, 7],
+      };
+      const start = performance.now();
+      await withErrorScopes(device, 'photon map', () => {
+        const encoder = device.createCommandEncoder();
+        const pass = encoder.beginComputePass(timer.passDescriptor());
+        const dispatch = (entry: string, x: number, y = 1): void => {
+          const p = pipeline(device, code, entry);
+          pass.setPipeline(p);
+          pass.setBindGroup(
+            0,
+            gpuCore(device).bufferBindGroup(
+              p,
+              bindings[entry]!.map((binding) => ({ binding, ...resources[binding]! })),
+            ),
+          );
+          pass.dispatchWorkgroups(Math.max(1, x), Math.max(1, y));
+        };
+        if (!options.photonsIn) dispatch('tracePhotons', Math.ceil(inputs.photons / 64));
+        dispatch('countCells', Math.ceil(capacity / 64));
+        dispatch('prefixCells', 1);
+        dispatch('scatterPhotons', Math.ceil(capacity / 64));
+        if (!options.skipImage)
+          dispatch('gatherImage', Math.ceil(width / 8), Math.ceil(height / 8));
+        if (queryCount > 0) dispatch('queryPoints', Math.ceil(queryCount / 64));
+        pass.end();
+        timer.resolve(encoder);
+        device.queue.submit([encoder.finish()]);
+      });
+      const counterData = new Uint32Array(await readBuffer(device, counters.buffer, 4));
+      const wallMs = performance.now() - start;
+      const stored = Math.min(counterData[0]!, capacity);
+      const imageData = new Float32Array(await readBuffer(device, image.buffer, imageWords * 4));
+      const viewCount = Math.min(stored, options.viewCount ?? 0);
+      const view = new Float32Array(viewCount * 4);
+      if (viewCount > 0) {
+        const raw = new Float32Array(
+          await readBuffer(device, photons.buffer, viewCount * RECORD_WORDS * 4),
+        );
+        const rawU32 = new Uint32Array(raw.buffer);
+        for (let i = 0; i < viewCount; i++) {
+          view.set(raw.subarray(i * RECORD_WORDS, i * RECORD_WORDS + 3), 4 * i);
+          view[4 * i + 3] = rawU32[i * RECORD_WORDS + 7]!;
+        }
+      }
+      const gpuMs = await timer.read();
+      return {
+        image: imageData.slice(0, width * height),
+        stored,
+        overflow: Math.max(0, counterData[0]! - capacity),
+        view,
+        milliseconds: gpuMs ?? wallMs,
+        timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+        queries: imageData.slice(0, 2 * queryCount),
+      };
+    });
 }
 
 export interface PathTraceGpuResult {
@@ -265,47 +238,38 @@ export async function pathTraceGpu(
   seed: number,
 ): Promise<PathTraceGpuResult> {
   const params = packParams(inputs, { width, height, seed, samples, queryCount: 0 });
-  const timer = new GpuTimer(device);
-  const uniform = device.createBuffer({
-    size: params.byteLength,
-    usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
-  });
-  const image = storage(device, 2 * width * height * 4);
-  try {
-    device.queue.writeBuffer(uniform, 0, params);
-    const start = performance.now();
-    await withErrorScopes(device, 'path trace', () => {
-      const p = pipeline(device, code, 'pathTrace');
-      const encoder = device.createCommandEncoder();
-      const pass = encoder.beginComputePass(timer.passDescriptor());
-      pass.setPipeline(p);
-      pass.setBindGroup(
-        0,
-        device.createBindGroup({
-          layout: p.getBindGroupLayout(0),
-          entries: [
-            { binding: 0, resource: { buffer: uniform } },
-            { binding: 6, resource: { buffer: image } },
-          ],
-        }),
-      );
-      pass.dispatchWorkgroups(Math.ceil(width / 8), Math.ceil(height / 8));
-      pass.end();
-      timer.resolve(encoder);
-      device.queue.submit([encoder.finish()]);
+  return gpuCore(device)
+    .lease()
+    .run(async (lease) => {
+      const timer = lease.timer();
+      const uniform = lease.upload('photon-map.params', params, GPUBufferUsage.UNIFORM);
+      const image = storage(lease, 'image', 2 * width * height * 4);
+      const start = performance.now();
+      await withErrorScopes(device, 'path trace', () => {
+        const p = pipeline(device, code, 'pathTrace');
+        const encoder = device.createCommandEncoder();
+        const pass = encoder.beginComputePass(timer.passDescriptor());
+        pass.setPipeline(p);
+        pass.setBindGroup(
+          0,
+          gpuCore(device).bufferBindGroup(p, [
+            { binding: 0, buffer: uniform, size: params.byteLength },
+            { binding: 6, ...image },
+          ]),
+        );
+        pass.dispatchWorkgroups(Math.ceil(width / 8), Math.ceil(height / 8));
+        pass.end();
+        timer.resolve(encoder);
+        device.queue.submit([encoder.finish()]);
+      });
+      const data = new Float32Array(await readBuffer(device, image.buffer, 2 * width * height * 4));
+      const wallMs = performance.now() - start;
+      const gpuMs = await timer.read();
+      return {
+        sum: data.slice(0, width * height),
+        sumSq: data.slice(width * height, 2 * width * height),
+        milliseconds: gpuMs ?? wallMs,
+        timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+      };
     });
-    const data = new Float32Array(await readBuffer(device, image, 2 * width * height * 4));
-    const wallMs = performance.now() - start;
-    const gpuMs = await timer.read();
-    return {
-      sum: data.slice(0, width * height),
-      sumSq: data.slice(width * height, 2 * width * height),
-      milliseconds: gpuMs ?? wallMs,
-      timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
-    };
-  } finally {
-    timer.destroy();
-    uniform.destroy();
-    image.destroy();
-  }
 }
