@@ -7,6 +7,8 @@
 // - every kernel in shaders/kernels/ (as the widgets link it, no conditions);
 // - the scene kernel under the plan of every example scene in public/scenes/, the
 //   general conditions, each condition alone, every pair of conditions, none and all;
+// - every static kernel file the build writes for the pages (src/book/build/
+//   staticKernels.ts: the plans of the widgets' settings too), where not already above;
 // - every library module linked as a root (all of its functions), under no
 //   conditions and under the general ones;
 // - the evaluation kernel of every library function the command line can evaluate
@@ -20,8 +22,10 @@
 // pipeline for every vertex and fragment entry; one Vitest test per source.
 import { readdirSync } from 'node:fs';
 import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { EXERCISE_IDS } from '../../exercises/index.ts';
+import { linkStaticKernels } from '../../src/book/build/staticKernels.ts';
 import {
   UnsupportedSignatureError,
   functionsOf,
@@ -154,6 +158,9 @@ async function graderSources(): Promise<{ name: string; code: string }[]> {
   return sources.filter(({ code }) => !seen.has(code) && (seen.add(code), true));
 }
 
+/** The WGSL of every static kernel file the book's build writes. */
+const staticKernelCodes: string[] = [];
+
 async function allSources(): Promise<CompileRequest[]> {
   const sources: { name: string; code: string }[] = [];
   for (const path of kernelPaths) {
@@ -165,6 +172,14 @@ async function allSources(): Promise<CompileRequest[]> {
       name: `kernel ${SCENE_KERNEL}, ${variant.name}`,
       code: await linkSceneKernel(library, variant.conditions),
     });
+  const root = fileURLToPath(new URL('../..', import.meta.url));
+  const linked = new Set(sources.map((source) => source.code));
+  for (const variant of await linkStaticKernels(root, 'assets', library)) {
+    staticKernelCodes.push(variant.code);
+    if (linked.has(variant.code)) continue;
+    linked.add(variant.code);
+    sources.push({ name: `static kernel ${variant.key}`, code: variant.code });
+  }
   for (const path of modulePaths) {
     const source = library[path] as string;
     sources.push({ name: `module ${path}`, code: await linkKernel(library, source) });
@@ -209,6 +224,9 @@ describe('every WGSL source compiles under naga (wgpu, as in Firefox)', () => {
         path,
       ).toBe(true);
     for (const path of modulePaths) expect(names, path).toContain(`module ${path}`);
+    const codes = new Set(requests.map((r) => r.code));
+    expect(staticKernelCodes.length).toBeGreaterThan(kernelPaths.length);
+    expect(staticKernelCodes.filter((code) => !codes.has(code))).toEqual([]);
     for (const id of EXERCISE_IDS)
       expect(
         names.some((n) => n.startsWith(`exercise ${id}, reference`)),
