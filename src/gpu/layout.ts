@@ -106,13 +106,13 @@ export type UnpackedValue<T> = T extends { readonly kind: 'scalar' }
             : never;
 
 /** f32, u32 and i32 views of one buffer, the targets of a packer. */
-export interface Words {
-  readonly u32: Uint32Array<ArrayBuffer>;
-  readonly f32: Float32Array<ArrayBuffer>;
-  readonly i32: Int32Array<ArrayBuffer>;
+export interface Words<B extends ArrayBufferLike = ArrayBufferLike> {
+  readonly u32: Uint32Array<B>;
+  readonly f32: Float32Array<B>;
+  readonly i32: Int32Array<B>;
 }
 
-export function wordsOf(buffer: ArrayBuffer): Words {
+export function wordsOf<B extends ArrayBufferLike>(buffer: B): Words<B> {
   return {
     u32: new Uint32Array(buffer),
     f32: new Float32Array(buffer),

@@ -633,6 +633,367 @@ export const sceneRenderKernel = {
       pad2: { offset: 28, size: 4, type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 } },
     },
   },
+  SceneRecords: {
+    kind: 'struct',
+    name: 'SceneRecords',
+    size: 2096,
+    align: 16,
+    members: {
+      header: {
+        offset: 0,
+        size: 16,
+        type: { kind: 'vector', scalar: 'u32', length: 4, size: 16, align: 16 },
+      },
+      camera: {
+        offset: 16,
+        size: 64,
+        type: {
+          kind: 'struct',
+          name: 'SceneCameraRecord',
+          size: 64,
+          align: 16,
+          members: {
+            position: {
+              offset: 0,
+              size: 12,
+              type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+            },
+            projection: {
+              offset: 12,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 },
+            },
+            look: {
+              offset: 16,
+              size: 12,
+              type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+            },
+            fovY: {
+              offset: 28,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+            },
+            up: {
+              offset: 32,
+              size: 12,
+              type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+            },
+            width: {
+              offset: 44,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+            },
+            imageSize: {
+              offset: 48,
+              size: 8,
+              type: { kind: 'vector', scalar: 'f32', length: 2, size: 8, align: 8 },
+            },
+            height: {
+              offset: 56,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+            },
+          },
+        },
+      },
+      grid: {
+        offset: 80,
+        size: 48,
+        type: {
+          kind: 'struct',
+          name: 'SceneGridRecord',
+          size: 48,
+          align: 16,
+          members: {
+            dimensions: {
+              offset: 0,
+              size: 12,
+              type: { kind: 'vector', scalar: 'u32', length: 3, size: 12, align: 16 },
+            },
+            densityScale: {
+              offset: 12,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+            },
+            boundsMin: {
+              offset: 16,
+              size: 12,
+              type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+            },
+            maxDensity: {
+              offset: 28,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+            },
+            boundsMax: {
+              offset: 32,
+              size: 12,
+              type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+            },
+          },
+        },
+      },
+      majorant: {
+        offset: 128,
+        size: 48,
+        type: {
+          kind: 'struct',
+          name: 'SceneGridRecord',
+          size: 48,
+          align: 16,
+          members: {
+            dimensions: {
+              offset: 0,
+              size: 12,
+              type: { kind: 'vector', scalar: 'u32', length: 3, size: 12, align: 16 },
+            },
+            densityScale: {
+              offset: 12,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+            },
+            boundsMin: {
+              offset: 16,
+              size: 12,
+              type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+            },
+            maxDensity: {
+              offset: 28,
+              size: 4,
+              type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+            },
+            boundsMax: {
+              offset: 32,
+              size: 12,
+              type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+            },
+          },
+        },
+      },
+      media: {
+        offset: 176,
+        size: 384,
+        type: {
+          kind: 'array',
+          element: {
+            kind: 'struct',
+            name: 'SceneMediumRecord',
+            size: 96,
+            align: 16,
+            members: {
+              kind: {
+                offset: 0,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 },
+              },
+              shape: {
+                offset: 4,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 },
+              },
+              phaseKind: {
+                offset: 8,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 },
+              },
+              phaseValue0: {
+                offset: 12,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              boundsA: {
+                offset: 16,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              radius: {
+                offset: 28,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              boundsB: {
+                offset: 32,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              phaseValue1: {
+                offset: 44,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              sigmaA: {
+                offset: 48,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              phaseValue2: {
+                offset: 60,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              sigmaS: {
+                offset: 64,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              phaseTable: {
+                offset: 76,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 },
+              },
+              emission: {
+                offset: 80,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+            },
+          },
+          count: 4,
+          stride: 96,
+          size: 384,
+          align: 16,
+        },
+      },
+      lights: {
+        offset: 560,
+        size: 512,
+        type: {
+          kind: 'array',
+          element: {
+            kind: 'struct',
+            name: 'Light',
+            size: 64,
+            align: 16,
+            members: {
+              kind: {
+                offset: 0,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 },
+              },
+              cosOuter: {
+                offset: 4,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              cosInner: {
+                offset: 8,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              pad0: {
+                offset: 12,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              position: {
+                offset: 16,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              pad1: {
+                offset: 28,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              direction: {
+                offset: 32,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              pad2: {
+                offset: 44,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              value: {
+                offset: 48,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              pad3: {
+                offset: 60,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+            },
+          },
+          count: 8,
+          stride: 64,
+          size: 512,
+          align: 16,
+        },
+      },
+      surfaces: {
+        offset: 1072,
+        size: 1024,
+        type: {
+          kind: 'array',
+          element: {
+            kind: 'struct',
+            name: 'Surface',
+            size: 64,
+            align: 16,
+            members: {
+              kind: {
+                offset: 0,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'u32', size: 4, align: 4 },
+              },
+              pad0: {
+                offset: 4,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              pad1: {
+                offset: 8,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              pad2: {
+                offset: 12,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              a: {
+                offset: 16,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              radius: {
+                offset: 28,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              b: {
+                offset: 32,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              pad3: {
+                offset: 44,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+              albedo: {
+                offset: 48,
+                size: 12,
+                type: { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 },
+              },
+              pad4: {
+                offset: 60,
+                size: 4,
+                type: { kind: 'scalar', scalar: 'f32', size: 4, align: 4 },
+              },
+            },
+          },
+          count: 16,
+          stride: 64,
+          size: 1024,
+          align: 16,
+        },
+      },
+    },
+  },
 } as const satisfies Record<string, StructLayout>;
 
 /** Bound structs of kernels/scene-statistics.wesl. */

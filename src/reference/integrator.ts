@@ -42,37 +42,23 @@ import {
 } from './surfaces.ts';
 import { TRACKING_MAX_STEPS, sampleFreeFlight } from './tracking.ts';
 import { F32_MAX, transmittanceHomogeneous } from './transmittance.ts';
+import { readStruct, wordsOf, type UnpackedValue } from '../gpu/layout.ts';
+import { sceneRenderKernel } from '../gpu/layouts.generated.ts';
 
-export const SCENE_MAX_MEDIA = 4;
-export const SCENE_MAX_LIGHTS = 8;
-export const SCENE_MAX_SURFACES = 16;
-export const SCENE_CAMERA_RECORD = 1;
-export const SCENE_GRID_RECORD = 5;
-export const SCENE_MAJORANT_RECORD = 8;
-export const SCENE_MEDIA_RECORD = 11;
-export const SCENE_LIGHTS_RECORD = 35;
-export const SCENE_SURFACES_RECORD = 67;
-export const SCENE_RECORDS = 131;
+/**
+ * The packed scene (integrator.wesl SceneRecords): every record offset, the medium
+ * record's phase words and the capacities come from the WGSL declaration, derived into
+ * src/gpu/layouts.generated.ts; src/scene/pack.ts writes with the same layout.
+ */
+export const SCENE_LAYOUT = sceneRenderKernel.SceneRecords;
+export const SCENE_MAX_MEDIA = SCENE_LAYOUT.members.media.type.count;
+export const SCENE_MAX_LIGHTS = SCENE_LAYOUT.members.lights.type.count;
+export const SCENE_MAX_SURFACES = SCENE_LAYOUT.members.surfaces.type.count;
 export const SCENE_ORDER_UNLIMITED = 0xffffffff;
 export const SCENE_MEDIUM_HOMOGENEOUS = 0;
 export const SCENE_MEDIUM_GRID = 1;
 export const SCENE_BOUNDS_BOX = 0;
 export const SCENE_BOUNDS_SPHERE = 1;
-/**
- * Where a medium's ScenePhase lies in its six records, as [record, word] from the
- * medium's first record (integrator.wesl sceneMedium): the kind, the three values and the
- * table offset. Records 2–4 hold vec3s, so their w words carry values 1–2 and the table
- * without moving anything else. The tags are the indices of src/phase/registry.ts.
- */
-export const SCENE_MEDIUM_PHASE = {
-  kind: [0, 2],
-  values: [
-    [0, 3],
-    [2, 3],
-    [3, 3],
-  ],
-  table: [4, 3],
-} as const;
 export const PATH_MAX_VERTICES = 1024;
 export const FLIGHT_PASSED = 0;
 export const FLIGHT_ABSORBED = 1;
@@ -87,7 +73,7 @@ type Rgb = [number, number, number];
 
 /** The GPU's bound resources and link conditions, for the twin. */
 export interface SceneData {
-  /** The packed records (4 words each) as f32, and the same words as u32. */
+  /** The packed SceneRecords (SCENE_LAYOUT) as f32, and the same words as u32. */
   records: Float32Array;
   words: Uint32Array;
   /** Samples of the density grid and of its majorant grid (x fastest). */
@@ -98,7 +84,13 @@ export interface SceneData {
   /** Counters of the current pixel, as sceneLookups and sceneCapped. */
   stats: { lookups: number; capped: number };
   /** Decoded records, filled on first use. */
-  cache?: { media: SceneMedium[]; lights: Light[]; surfaces: Surface[]; grids: DensityGrid[] };
+  cache?: {
+    records: UnpackedValue<typeof SCENE_LAYOUT>;
+    media: SceneMedium[];
+    lights: Light[];
+    surfaces: Surface[];
+    grids: { grid: DensityGrid; majorant: DensityGrid };
+  };
 }
 
 export interface SceneMedium {
@@ -169,14 +161,6 @@ const neg = (v: Vec3): Vec3 => [-v[0], -v[1], -v[2]];
 const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const clampRgb = (a: Rgb): Rgb => a.map((x) => Math.min(Math.max(x, 0), 1)) as Rgb;
 
-function vec(scene: SceneData, record: number): Vec3 {
-  const r = scene.records;
-  return [r[4 * record]!, r[4 * record + 1]!, r[4 * record + 2]!];
-}
-const field = (scene: SceneData, record: number, k: number): number =>
-  scene.records[4 * record + k]!;
-const word = (scene: SceneData, record: number, k: number): number => scene.words[4 * record + k]!;
-
 export function maxComponent(v: readonly number[]): number {
   return Math.max(v[0]!, v[1]!, v[2]!);
 }
@@ -188,97 +172,72 @@ export function averageComponent(v: readonly number[]): number {
 }
 
 export function sceneHeader(scene: SceneData): [number, number, number, number] {
-  return [word(scene, 0, 0), word(scene, 0, 1), word(scene, 0, 2), word(scene, 0, 3)];
+  const [media, lights, surfaces, order] = decoded(scene).records.header;
+  return [media!, lights!, surfaces!, order!];
 }
 
 export function sceneCamera(scene: SceneData): Camera {
-  const c = SCENE_CAMERA_RECORD;
-  const size = [field(scene, c + 3, 0), field(scene, c + 3, 1)] as const;
-  if (word(scene, c, 3) === CAMERA_ORTHOGRAPHIC)
-    return cameraOrthographic(
-      vec(scene, c),
-      vec(scene, c + 1),
-      vec(scene, c + 2),
-      field(scene, c + 2, 3),
-      field(scene, c + 3, 2),
-      size[0],
-      size[1],
-    );
-  return cameraPerspective(
-    vec(scene, c),
-    vec(scene, c + 1),
-    vec(scene, c + 2),
-    field(scene, c + 1, 3),
-    size[0],
-    size[1],
-  );
+  const c = decoded(scene).records.camera;
+  const [width, height] = c.imageSize;
+  if (c.projection === CAMERA_ORTHOGRAPHIC)
+    return cameraOrthographic(c.position, c.look, c.up, c.width, c.height, width, height);
+  return cameraPerspective(c.position, c.look, c.up, c.fovY, width, height);
 }
 
+/** The records read once per SceneData at the offsets of SCENE_LAYOUT (as sceneMedium etc.). */
 function decoded(scene: SceneData): NonNullable<SceneData['cache']> {
   if (scene.cache) return scene.cache;
-  const media: SceneMedium[] = [];
-  for (let i = 0; i < SCENE_MAX_MEDIA; i++) {
-    const o = SCENE_MEDIA_RECORD + 6 * i;
-    media.push({
-      kind: word(scene, o, 0),
-      shape: word(scene, o, 1),
-      phase: {
-        kind: word(scene, o + SCENE_MEDIUM_PHASE.kind[0], SCENE_MEDIUM_PHASE.kind[1]),
-        values: SCENE_MEDIUM_PHASE.values.map(([r, k]) => field(scene, o + r, k)) as [
-          number,
-          number,
-          number,
-        ],
-        table: word(scene, o + SCENE_MEDIUM_PHASE.table[0], SCENE_MEDIUM_PHASE.table[1]),
-      },
-      boundsA: vec(scene, o + 1),
-      radius: field(scene, o + 1, 3),
-      boundsB: vec(scene, o + 2),
-      sigmaA: vec(scene, o + 3) as Rgb,
-      sigmaS: vec(scene, o + 4) as Rgb,
-      emission: vec(scene, o + 5) as Rgb,
-    });
-  }
-  const lights: Light[] = [];
-  for (let i = 0; i < SCENE_MAX_LIGHTS; i++) {
-    const o = SCENE_LIGHTS_RECORD + 4 * i;
-    lights.push({
-      kind: word(scene, o, 0),
-      cosOuter: field(scene, o, 1),
-      cosInner: field(scene, o, 2),
-      position: vec(scene, o + 1),
-      direction: vec(scene, o + 2),
-      value: vec(scene, o + 3),
-    });
-  }
-  const surfaces: Surface[] = [];
-  for (let i = 0; i < SCENE_MAX_SURFACES; i++) {
-    const o = SCENE_SURFACES_RECORD + 4 * i;
-    surfaces.push({
-      kind: word(scene, o, 0),
-      a: vec(scene, o + 1),
-      radius: field(scene, o + 1, 3),
-      b: vec(scene, o + 2),
-      albedo: vec(scene, o + 3),
-    });
-  }
-  const grid = (record: number): DensityGrid => ({
-    dimensions: [word(scene, record, 0), word(scene, record, 1), word(scene, record, 2)],
-    densityScale: field(scene, record, 3),
-    boundsMin: vec(scene, record + 1),
-    boundsMax: vec(scene, record + 2),
+  const { words } = scene;
+  const records = readStruct(SCENE_LAYOUT, wordsOf(words.buffer), words.byteOffset);
+  const media = records.media.map((r): SceneMedium => ({
+    kind: r.kind,
+    shape: r.shape,
+    phase: {
+      kind: r.phaseKind,
+      values: [r.phaseValue0, r.phaseValue1, r.phaseValue2],
+      table: r.phaseTable,
+    },
+    boundsA: r.boundsA,
+    radius: r.radius,
+    boundsB: r.boundsB,
+    sigmaA: r.sigmaA,
+    sigmaS: r.sigmaS,
+    emission: r.emission,
+  }));
+  const lights = records.lights.map((r): Light => ({
+    kind: r.kind,
+    cosOuter: r.cosOuter,
+    cosInner: r.cosInner,
+    position: r.position,
+    direction: r.direction,
+    value: r.value,
+  }));
+  const surfaces = records.surfaces.map((r): Surface => ({
+    kind: r.kind,
+    a: r.a,
+    radius: r.radius,
+    b: r.b,
+    albedo: r.albedo,
+  }));
+  const grid = (r: typeof records.grid): DensityGrid => ({
+    dimensions: r.dimensions,
+    densityScale: r.densityScale,
+    boundsMin: r.boundsMin,
+    boundsMax: r.boundsMax,
   });
   scene.cache = {
+    records,
     media,
     lights,
     surfaces,
-    grids: [grid(SCENE_GRID_RECORD), grid(SCENE_MAJORANT_RECORD)],
+    grids: { grid: grid(records.grid), majorant: grid(records.majorant) },
   };
   return scene.cache;
 }
 
-export function sceneGridAt(scene: SceneData, record: number): DensityGrid {
-  return decoded(scene).grids[record === SCENE_MAJORANT_RECORD ? 1 : 0]!;
+/** The density grid or its majorant grid (integrator.wesl sceneGrid of that record). */
+export function sceneGridAt(scene: SceneData, which: 'grid' | 'majorant'): DensityGrid {
+  return decoded(scene).grids[which];
 }
 
 export function sceneMedium(scene: SceneData, index: number): SceneMedium {
@@ -310,7 +269,7 @@ export function mediumSegment(
 export function mediumDensity(scene: SceneData, medium: SceneMedium, p: Vec3): number {
   if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
     scene.stats.lookups += 1;
-    return gridDensityTrilinear(sceneGridAt(scene, SCENE_GRID_RECORD), scene.density, p);
+    return gridDensityTrilinear(sceneGridAt(scene, 'grid'), scene.density, p);
   }
   return 1;
 }
@@ -325,14 +284,14 @@ export function mediumMajorant(
   const sigmaT = maxComponent(add(medium.sigmaA, medium.sigmaS));
   if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
     const majorant = gridMajorantAlongRay(
-      sceneGridAt(scene, SCENE_MAJORANT_RECORD),
+      sceneGridAt(scene, 'majorant'),
       scene.majorant,
       origin,
       direction,
       segment[0],
       segment[1],
     );
-    if (majorant.capped !== 0) return field(scene, SCENE_MAJORANT_RECORD + 1, 3) * sigmaT;
+    if (majorant.capped !== 0) return decoded(scene).records.majorant.maxDensity * sigmaT;
     return majorant.majorant * sigmaT;
   }
   return sigmaT;
