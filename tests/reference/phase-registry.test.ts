@@ -28,11 +28,7 @@ import {
   type PhaseDescription,
   type PhaseRecord,
 } from '../../src/phase/registry.ts';
-import {
-  directionAroundAxis,
-  orthonormalBasis,
-  type Vec3,
-} from '../../src/reference/directions.ts';
+import { sampleUniformSphere, type Vec3 } from '../../src/reference/directions.ts';
 import {
   mediumPhaseEval,
   mediumPhaseSample,
@@ -46,7 +42,6 @@ import {
   rayleighEval,
   rayleighSample,
 } from '../../src/reference/phase.ts';
-import { sampleUniformSphere } from '../../src/reference/directions.ts';
 import { rngNextFloat, rngSeed } from '../../src/reference/rng.ts';
 import { loadSceneFile, PUBLIC_DIRECTORY } from '../../src/scene/loadNode.ts';
 import { resolveScene } from '../../src/scene/load.ts';
@@ -54,6 +49,16 @@ import { packScene, sceneData } from '../../src/scene/pack.ts';
 import { CONDITION_NAMES, GENERAL_CONDITIONS, plan } from '../../src/scene/plan.ts';
 import { parseScene, validateScene } from '../../src/scene/validate.ts';
 import { chiSquareSurvival } from '../../src/statistics/distributions.ts';
+import {
+  chiSquare,
+  DirectionHistogramBuilder,
+  dot,
+  expectedMuCounts,
+  MU_BINS,
+  PHI_BINS,
+  phaseOfMu,
+  probability,
+} from '../support/phaseStatistics.ts';
 
 const SHADERS = fileURLToPath(new URL('../../shaders/', import.meta.url));
 const INTEGRATOR = readFileSync(join(SHADERS, 'integrator.wesl'), 'utf8');
@@ -264,55 +269,12 @@ describe('validation and packing follow each entry’s schema', () => {
 // ---------------------------------------------------------------------------
 // The twin of every entry: normalisation and sampling against its own evaluation.
 // ---------------------------------------------------------------------------
-const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const WO: Vec3 = (() => {
   const v = [0.3, -0.5, 0.81];
   const n = Math.hypot(...v);
   return [v[0]! / n, v[1]! / n, v[2]! / n];
 })();
-const TRAVEL: Vec3 = [-WO[0], -WO[1], -WO[2]];
 
-/** 16-point Gauss–Legendre nodes and weights on [−1, 1] (Newton on P_16). */
-const GAUSS = (() => {
-  const n = 16;
-  const nodes: number[] = [];
-  const weights: number[] = [];
-  for (let i = 1; i <= n; i++) {
-    let x = Math.cos((Math.PI * (i - 0.25)) / (n + 0.5));
-    let derivative = 1;
-    for (let iteration = 0; iteration < 100; iteration++) {
-      let p0 = 1;
-      let p1 = x;
-      for (let k = 2; k <= n; k++) [p0, p1] = [p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k];
-      derivative = (n * (x * p1 - p0)) / (x * x - 1);
-      const step = p1 / derivative;
-      x -= step;
-      if (Math.abs(step) < 1e-16) break;
-    }
-    nodes.push(x);
-    weights.push(2 / ((1 - x * x) * derivative * derivative));
-  }
-  return { nodes, weights };
-})();
-
-/** ∫ 2π p(μ) dμ over [a, b] (p of a rotationally symmetric phase function), 64 panels. */
-function probability(p: (mu: number) => number, a: number, b: number): number {
-  const panels = 64;
-  let sum = 0;
-  for (let k = 0; k < panels; k++) {
-    const lo = a + ((b - a) * k) / panels;
-    const half = (b - a) / panels / 2;
-    GAUSS.nodes.forEach((x, i) => (sum += GAUSS.weights[i]! * half * p(lo + half * (1 + x))));
-  }
-  return 2 * Math.PI * sum;
-}
-
-function chiSquare(counts: readonly number[], expected: readonly number[]): number {
-  return counts.reduce((s, c, k) => s + (c - expected[k]!) ** 2 / expected[k]!, 0);
-}
-
-const MU_BINS = 20;
-const PHI_BINS = 8;
 const SAMPLES = 40_000;
 const EXAMPLES = PHASE_FUNCTIONS.reduce((n, e) => n + e.examples.length, 0);
 /** Two chi-square tests per example, family-wise α = 0.01. */
@@ -322,49 +284,29 @@ describe('every entry’s twin is normalised and samples its own density', () =>
   PHASE_FUNCTIONS.forEach((entry) => {
     entry.examples.forEach((example) => {
       const record: PhaseRecord = packPhase({ type: entry.id, ...example } as PhaseDescription);
-      const p = (mu: number): number =>
-        entry.twin.eval(record, WO, directionAroundAxis(TRAVEL, mu, Math.sqrt(1 - mu * mu), 0.37));
+      const p = phaseOfMu(entry, record, WO);
       const label = `${entry.id} ${JSON.stringify(example)}`;
 
       it(`${label}: ∫ p dω = 1 and p does not depend on the azimuth`, () => {
         expect(probability(p, -1, 1)).toBeCloseTo(1, 6);
-        for (const mu of [-0.8, 0, 0.6]) {
-          const s = Math.sqrt(1 - mu * mu);
-          const other = entry.twin.eval(record, WO, directionAroundAxis(TRAVEL, mu, s, 0.81));
-          expect(other).toBeCloseTo(p(mu), 10);
-        }
+        const rotated = phaseOfMu(entry, record, WO, 0.81);
+        for (const mu of [-0.8, 0, 0.6]) expect(rotated(mu)).toBeCloseTo(p(mu), 10);
       });
 
       it(`${label}: ${SAMPLES} samples follow p in μ (${MU_BINS} bins) and are uniform in azimuth (${PHI_BINS} bins)`, () => {
-        const expectedMu = Array.from(
-          { length: MU_BINS },
-          (_, k) => SAMPLES * probability(p, -1 + (2 * k) / MU_BINS, -1 + (2 * (k + 1)) / MU_BINS),
-        );
-        const muCounts = new Array<number>(MU_BINS).fill(0);
-        const phiCounts = new Array<number>(PHI_BINS).fill(0);
-        const { tangent, bitangent } = orthonormalBasis(TRAVEL);
-        let lengthError = 0;
+        const builder = new DirectionHistogramBuilder(WO);
         for (let i = 0; i < SAMPLES; i++) {
           const state = { value: rngSeed(i, 7) };
-          const wi = entry.twin.sample(record, WO, [rngNextFloat(state), rngNextFloat(state)]);
-          lengthError = Math.max(lengthError, Math.abs(Math.hypot(...wi) - 1));
-          const mu = -dot(WO, wi);
-          muCounts[Math.min(MU_BINS - 1, Math.floor(((mu + 1) / 2) * MU_BINS))]! += 1;
-          const phi = Math.atan2(dot(wi, bitangent), dot(wi, tangent));
-          phiCounts[
-            Math.min(PHI_BINS - 1, Math.floor(((phi + Math.PI) / (2 * Math.PI)) * PHI_BINS))
-          ]! += 1;
+          builder.add(entry.twin.sample(record, WO, [rngNextFloat(state), rngNextFloat(state)]));
         }
+        const { mu, phi, lengthError } = builder.histogram;
         expect(lengthError, 'every wi is a unit vector').toBeLessThan(1e-12);
-        const muStatistic = chiSquare(muCounts, expectedMu);
+        const muStatistic = chiSquare(mu, expectedMuCounts(p, SAMPLES));
         expect(
           chiSquareSurvival(muStatistic, MU_BINS - 1),
           `χ² in μ = ${muStatistic}`,
         ).toBeGreaterThan(ALPHA);
-        const phiStatistic = chiSquare(
-          phiCounts,
-          new Array<number>(PHI_BINS).fill(SAMPLES / PHI_BINS),
-        );
+        const phiStatistic = chiSquare(phi, new Array<number>(PHI_BINS).fill(SAMPLES / PHI_BINS));
         expect(
           chiSquareSurvival(phiStatistic, PHI_BINS - 1),
           `χ² in φ = ${phiStatistic}`,
@@ -375,24 +317,15 @@ describe('every entry’s twin is normalised and samples its own density', () =>
 
   it('the chi-square test rejects a sampler that does not follow the density', () => {
     // HG g = 0.3 evaluated, isotropic sampled: the test above must fail on such a pair.
-    const hg = packPhase({ type: 'henyey-greenstein', g: 0.3 });
-    const p = (mu: number): number =>
-      hgEvalDirections(
-        hg.values[0],
-        WO,
-        directionAroundAxis(TRAVEL, mu, Math.sqrt(1 - mu * mu), 0),
-      );
-    const counts = new Array<number>(MU_BINS).fill(0);
+    const hg = PHASE_FUNCTIONS[phaseTag('henyey-greenstein')];
+    const p = phaseOfMu(hg, packPhase({ type: 'henyey-greenstein', g: 0.3 }), WO);
+    const builder = new DirectionHistogramBuilder(WO);
     for (let i = 0; i < SAMPLES; i++) {
       const state = { value: rngSeed(i, 7) };
-      const mu = -dot(WO, sampleUniformSphere([rngNextFloat(state), rngNextFloat(state)]));
-      counts[Math.min(MU_BINS - 1, Math.floor(((mu + 1) / 2) * MU_BINS))]! += 1;
+      builder.add(sampleUniformSphere([rngNextFloat(state), rngNextFloat(state)]));
     }
-    const expected = Array.from(
-      { length: MU_BINS },
-      (_, k) => SAMPLES * probability(p, -1 + (2 * k) / MU_BINS, -1 + (2 * (k + 1)) / MU_BINS),
-    );
-    expect(chiSquareSurvival(chiSquare(counts, expected), MU_BINS - 1)).toBeLessThan(ALPHA);
+    const statistic = chiSquare(builder.histogram.mu, expectedMuCounts(p, SAMPLES));
+    expect(chiSquareSurvival(statistic, MU_BINS - 1)).toBeLessThan(ALPHA);
   });
 });
 

@@ -3,7 +3,9 @@
 // of the phase-function registry and each of its examples, packed by packPhase: a tag,
 // a parameter slot or a condition that differs between the registry, the WGSL and the
 // twin shows here as a different value. Linked with the general conditions (every case)
-// and with no phase condition (every kind falls back to the first entry).
+// and with no phase condition (every kind falls back to the first entry). Then, per
+// example, GPU samples of mediumPhaseSample against the twin's density (chi-square), so
+// a new entry's WGSL sampler is checked over its whole domain, not only at a few points.
 import { beforeAll, describe, expect, it } from 'vitest';
 import { linkKernel } from '../../src/gpu/link.ts';
 import {
@@ -25,6 +27,15 @@ import { HG_VALUE, TRIG_DIRECTION } from '../support/phaseHarness.ts';
 import { withinTolerance } from '../support/shaderHarness.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
+import {
+  chiSquare,
+  DirectionHistogramBuilder,
+  expectedMuCounts,
+  MU_BINS,
+  PHI_BINS,
+  phaseOfMu,
+} from '../support/phaseStatistics.ts';
+import { chiSquareSurvival } from '../../src/statistics/distributions.ts';
 
 // One case: the phase record (kind as u32 bits, three values, table), wo, wi, u.
 const CASE_WORDS = 16;
@@ -91,31 +102,26 @@ function dispatchCases(): DispatchCase[] {
   return cases;
 }
 
-async function runOnGpu(
-  conditions: Conditions,
-  cases: readonly DispatchCase[],
-): Promise<Float32Array> {
+/** Packs one case: phase record, wo, wi, u and the table offset (see KERNEL). */
+function packCase(c: DispatchCase, floats: Float32Array, words: Uint32Array, o: number): void {
+  words[o] = c.phase.kind;
+  floats.set(c.phase.values, o + 1);
+  floats.set(c.wo, o + 4);
+  floats.set(c.wi, o + 8);
+  floats.set(c.u, o + 12);
+  words[o + 14] = c.phase.table;
+}
+
+/** Runs `code` (bindings group 1: input, then `count` vec4f results) and reads them back. */
+async function dispatch(code: string, input: ArrayBuffer, count: number): Promise<Float32Array> {
   const device = await nodeDevice();
-  const code = await linkKernel(SHADER_LIBRARY, KERNEL, conditions);
-  const input = new ArrayBuffer(cases.length * CASE_WORDS * 4);
-  const floats = new Float32Array(input);
-  const words = new Uint32Array(input);
-  cases.forEach((c, i) => {
-    const o = i * CASE_WORDS;
-    words[o] = c.phase.kind;
-    floats.set(c.phase.values, o + 1);
-    floats.set(c.wo, o + 4);
-    floats.set(c.wi, o + 8);
-    floats.set(c.u, o + 12);
-    words[o + 14] = c.phase.table;
-  });
   const usage = GPUBufferUsage;
-  const casesBuffer = device.createBuffer({
+  const inputBuffer = device.createBuffer({
     size: input.byteLength,
     usage: usage.STORAGE | usage.COPY_DST,
   });
-  device.queue.writeBuffer(casesBuffer, 0, input);
-  const resultBytes = cases.length * 16;
+  device.queue.writeBuffer(inputBuffer, 0, input);
+  const resultBytes = count * 16;
   const results = device.createBuffer({ size: resultBytes, usage: usage.STORAGE | usage.COPY_SRC });
   const readback = device.createBuffer({
     size: resultBytes,
@@ -129,7 +135,7 @@ async function runOnGpu(
   const bindGroup = device.createBindGroup({
     layout: pipeline.getBindGroupLayout(1),
     entries: [
-      { binding: 0, resource: { buffer: casesBuffer } },
+      { binding: 0, resource: { buffer: inputBuffer } },
       { binding: 1, resource: { buffer: results } },
     ],
   });
@@ -137,7 +143,7 @@ async function runOnGpu(
   const pass = encoder.beginComputePass();
   pass.setPipeline(pipeline);
   pass.setBindGroup(1, bindGroup);
-  pass.dispatchWorkgroups(Math.ceil(cases.length / 64));
+  pass.dispatchWorkgroups(Math.ceil(count / 64));
   pass.end();
   encoder.copyBufferToBuffer(results, 0, readback, 0, resultBytes);
   device.queue.submit([encoder.finish()]);
@@ -146,8 +152,19 @@ async function runOnGpu(
   await readback.mapAsync(GPUMapMode.READ);
   const output = new Float32Array(readback.getMappedRange().slice(0));
   readback.unmap();
-  for (const buffer of [casesBuffer, results, readback]) buffer.destroy();
+  for (const buffer of [inputBuffer, results, readback]) buffer.destroy();
   return output;
+}
+
+async function runOnGpu(
+  conditions: Conditions,
+  cases: readonly DispatchCase[],
+): Promise<Float32Array> {
+  const input = new ArrayBuffer(cases.length * CASE_WORDS * 4);
+  const floats = new Float32Array(input);
+  const words = new Uint32Array(input);
+  cases.forEach((c, i) => packCase(c, floats, words, i * CASE_WORDS));
+  return dispatch(await linkKernel(SHADER_LIBRARY, KERNEL, conditions), input, cases.length);
 }
 
 function twinOf(conditions: Conditions, c: DispatchCase): number[] {
@@ -192,3 +209,64 @@ for (const [label, conditions] of [
     );
   });
 }
+
+// ---------------------------------------------------------------------------
+// The GPU's samples of each entry against the twin's density (chi-square).
+// ---------------------------------------------------------------------------
+const GPU_SAMPLES = 1 << 16;
+const SAMPLING_KERNEL = `import package::integrator::{SceneMedium, ScenePhase, mediumPhaseSample};
+import package::rng::{rngNextFloat, rngSeed};
+
+@group(1) @binding(0) var<storage, read> phaseCase: array<vec4f, 4>;
+@group(1) @binding(1) var<storage, read_write> results: array<vec4f>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3u) {
+  let i = id.x;
+  if (i >= arrayLength(&results)) {
+    return;
+  }
+  let r0 = phaseCase[0];
+  let phase = ScenePhase(bitcast<u32>(r0.x), bitcast<u32>(phaseCase[3].z), r0.yzw);
+  let medium = SceneMedium(0u, 0u, phase, vec3f(0.0), 0.0, vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0));
+  var state = rngSeed(i, 9u);
+  let u = vec2f(rngNextFloat(&state), rngNextFloat(&state));
+  results[i] = vec4f(mediumPhaseSample(medium, phaseCase[1].xyz, u), 0.0);
+}
+`;
+/** Two chi-square tests per example, family-wise α = 0.01. */
+const GPU_ALPHA = 0.01 / (2 * PHASE_FUNCTIONS.reduce((n, e) => n + e.examples.length, 0));
+
+describe(`integrator.wesl mediumPhaseSample on the GPU: ${GPU_SAMPLES} samples per example follow the twin's density`, () => {
+  const wo = unit([0.3, -0.5, 0.81]);
+  for (const entry of PHASE_FUNCTIONS)
+    for (const example of entry.examples) {
+      it(`${entry.id} ${JSON.stringify(example)} (χ² in μ, ${MU_BINS} bins, and in azimuth, ${PHI_BINS} bins)`, async () => {
+        const record = packPhase({ type: entry.id, ...example } as PhaseDescription);
+        const input = new ArrayBuffer(CASE_WORDS * 4);
+        const c: DispatchCase = { name: '', phase: record, wo, wi: wo, u: [0, 0] };
+        packCase(c, new Float32Array(input), new Uint32Array(input), 0);
+        const code = await linkKernel(SHADER_LIBRARY, SAMPLING_KERNEL, GENERAL_CONDITIONS);
+        const output = await dispatch(code, input, GPU_SAMPLES);
+        const builder = new DirectionHistogramBuilder(wo);
+        for (let i = 0; i < GPU_SAMPLES; i++)
+          builder.add([output[4 * i]!, output[4 * i + 1]!, output[4 * i + 2]!]);
+        const { mu, phi, lengthError } = builder.histogram;
+        expect(lengthError, 'every wi is a unit vector (f32)').toBeLessThan(1e-5);
+        const p = phaseOfMu(entry, record, wo);
+        const muStatistic = chiSquare(mu, expectedMuCounts(p, GPU_SAMPLES));
+        expect(
+          chiSquareSurvival(muStatistic, MU_BINS - 1),
+          `χ² in μ = ${muStatistic}`,
+        ).toBeGreaterThan(GPU_ALPHA);
+        const phiStatistic = chiSquare(
+          phi,
+          new Array<number>(PHI_BINS).fill(GPU_SAMPLES / PHI_BINS),
+        );
+        expect(
+          chiSquareSurvival(phiStatistic, PHI_BINS - 1),
+          `χ² in φ = ${phiStatistic}`,
+        ).toBeGreaterThan(GPU_ALPHA);
+      }, 60_000);
+    }
+});
