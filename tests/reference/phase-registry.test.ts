@@ -24,6 +24,7 @@ import {
   PHASE_FUNCTIONS,
   PHASE_IDS,
   packPhase,
+  phaseEntry,
   phaseTag,
   type PhaseDescription,
   type PhaseRecord,
@@ -317,7 +318,7 @@ describe('every entry’s twin is normalised and samples its own density', () =>
 
   it('the chi-square test rejects a sampler that does not follow the density', () => {
     // HG g = 0.3 evaluated, isotropic sampled: the test above must fail on such a pair.
-    const hg = PHASE_FUNCTIONS[phaseTag('henyey-greenstein')];
+    const hg = phaseEntry('henyey-greenstein');
     const p = phaseOfMu(hg, packPhase({ type: 'henyey-greenstein', g: 0.3 }), WO);
     const builder = new DirectionHistogramBuilder(WO);
     for (let i = 0; i < SAMPLES; i++) {

@@ -187,7 +187,7 @@ for (const [label, conditions] of [
 ] as const) {
   describe(`integrator.wesl phase dispatch vs twin, ${label}`, () => {
     const cases = dispatchCases();
-    let output = new Float32Array(0);
+    let output: Float32Array = new Float32Array(0);
     beforeAll(async () => {
       output = await runOnGpu(conditions, cases);
     }, 60_000);
