@@ -6,6 +6,8 @@
 // alike: the caller passes the device and the shader library.
 import { gpuCore } from '../gpu/core.ts';
 import { withErrorScopes } from '../gpu/errors.ts';
+import { wordsOf, writeStruct } from '../gpu/layout.ts';
+import { sceneRenderKernel } from '../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { GpuTimer } from '../gpu/timing.ts';
 import type { DensityGridData } from '../reference/medium.ts';
@@ -16,6 +18,8 @@ import type { Conditions } from './plan.ts';
 import type { PassOutput, PassRenderer } from './render.ts';
 
 export const SCENE_KERNEL = 'kernels/scene-render.wesl';
+/** The scene kernel's per-pass uniform, laid out from its WGSL declaration. */
+const RENDER_PASS = sceneRenderKernel.RenderPass;
 const ENTRY_POINT = 'renderScene';
 
 /** The linked WGSL of the scene kernel for the given conditions. */
@@ -73,7 +77,8 @@ export class GpuSceneRenderer implements PassRenderer {
   readonly accumulation: GpuAccumulation;
   private readonly resources: (GPUBuffer | GPUTexture)[];
   private readonly timer: GpuTimer;
-  private readonly passWords = new Uint32Array(8);
+  /** The kernel's RenderPass uniform, rewritten in place each pass. */
+  private readonly passWords = wordsOf(new ArrayBuffer(RENDER_PASS.size));
   private released = false;
 
   private constructor(
@@ -115,7 +120,7 @@ export class GpuSceneRenderer implements PassRenderer {
       // The pass's sums stay on the GPU: the accumulate kernel reads them.
       const output = device.createBuffer({ size: outputBytes, usage: GPUBufferUsage.STORAGE });
       const uniforms = device.createBuffer({
-        size: 32,
+        size: RENDER_PASS.size,
         usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
       });
       const density = volumeTexture(device, packed.density);
@@ -156,8 +161,9 @@ export class GpuSceneRenderer implements PassRenderer {
    */
   async renderPass(sampleOffset: number, samples: number): Promise<PassOutput> {
     const { device, packed } = this;
-    const pass = this.passWords;
-    pass.set([sampleOffset, samples, packed.seed, packed.width, packed.height, 0, 0, 0]);
+    const pass = this.passWords.u32;
+    const { seed, width, height } = packed;
+    writeStruct(RENDER_PASS, { sampleOffset, samples, seed, width, height }, this.passWords);
     const start = performance.now();
     await withErrorScopes(device, 'scene pass', () => {
       device.queue.writeBuffer(this.uniforms, 0, pass);

@@ -18,6 +18,8 @@ import {
   dipoleTotalReflectance,
   type DipoleParameters,
 } from '../reference/dipole.ts';
+import { packStruct } from '../gpu/layout.ts';
+import { translucentPathKernel } from '../gpu/layouts.generated.ts';
 import { relativeRmse, rmse } from '../statistics/errors.ts';
 import { mean } from '../statistics/summary.ts';
 
@@ -393,7 +395,12 @@ export function renderDiffuseCpu(scene: TranslucentScene): Float32Array {
   return image;
 }
 
-/** The uniform block TranslucentParams of the three kernels (112 bytes). */
+/**
+ * The uniform block TranslucentParams of the three kernels (declared alike in each;
+ * tests/shaders/layout-constants.test.ts holds the three layouts equal).
+ */
+export const TRANSLUCENT_PARAMS = translucentPathKernel.TranslucentParams;
+
 export function packParams(
   scene: TranslucentScene,
   extra: {
@@ -404,22 +411,23 @@ export function packParams(
     ambient?: number;
     maxBounces?: number;
   },
-): Uint32Array {
-  const buffer = new ArrayBuffer(112);
-  const u = new Uint32Array(buffer);
-  const f = new Float32Array(buffer);
-  u[0] = scene.size;
-  u[1] = extra.count ?? 0;
-  u[2] = extra.seed ?? 0;
-  u[3] = extra.offset ?? 0;
-  f.set([scene.radius, scene.view, scene.eta, extra.epsilon ?? 0], 4);
-  f.set([...scene.sigmaSPrime, scene.g], 8);
-  f.set([...scene.sigmaA, extra.ambient ?? 0], 12);
-  f.set([...scene.toLight, scene.irradiance], 16);
+): Uint32Array<ArrayBuffer> {
   const [lu, lv] = lightBasis(scene.toLight);
-  f.set([...lu, extra.maxBounces ?? 4096], 20);
-  f.set([...lv, 0], 24);
-  return u;
+  return packStruct(TRANSLUCENT_PARAMS, {
+    size: scene.size,
+    count: extra.count ?? 0,
+    seed: extra.seed ?? 0,
+    offset: extra.offset ?? 0,
+    radius: scene.radius,
+    view: scene.view,
+    eta: scene.eta,
+    epsilon: extra.epsilon ?? 0,
+    sigmaSPrime: [...scene.sigmaSPrime, scene.g],
+    sigmaA: [...scene.sigmaA, extra.ambient ?? 0],
+    toLight: [...scene.toLight, scene.irradiance],
+    lightU: [...lu, extra.maxBounces ?? 4096],
+    lightV: [...lv, 0],
+  });
 }
 
 export interface ImageError {

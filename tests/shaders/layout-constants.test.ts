@@ -3,7 +3,13 @@
 // through the one layout derived from integrator.wesl's SceneRecords (no GPU needed).
 import { describe, expect, it } from 'vitest';
 import { evaluateInteger, parseDeclarations } from '../../src/gpu/layoutDerive.ts';
-import type { StructLayout } from '../../src/gpu/layout.ts';
+import { readStruct, wordsOf, type StructLayout } from '../../src/gpu/layout.ts';
+import { KERNEL_LAYOUTS, transferFunctionKernel } from '../../src/gpu/layouts.generated.ts';
+import {
+  TRANSFER_FUNCTION_WORDS,
+  TRANSFER_MAX_POINTS,
+  packTransferFunction,
+} from '../../src/reference/volume.ts';
 import {
   SCENE_BOUNDS_BOX,
   SCENE_BOUNDS_SPHERE,
@@ -71,6 +77,7 @@ describe('TypeScript constants equal their WGSL declarations', () => {
       ['kernels/slab.wesl', 'slab.wesl'],
       { SLAB_MAX_PHOTONS_PER_THREAD, SLAB_MAX_COLLISIONS, SLAB_MAX_BINS },
     ],
+    ['the transfer-function kernel', ['volume.wesl'], { TRANSFER_MAX_POINTS }],
   ];
   it.each(mirrors)('%s: %j', (_, modules, constants) => {
     const consts = wgslConsts(modules);
@@ -78,6 +85,31 @@ describe('TypeScript constants equal their WGSL declarations', () => {
       expect(consts.has(name), `${name} is declared in ${modules.join(', ')}`).toBe(true);
       expect(evaluateInteger(consts.get(name)!, consts), name).toBe(value);
     }
+  });
+});
+
+describe('structs packed by hand-kept code or declared more than once', () => {
+  it('TRANSFER_FUNCTION_WORDS and packTransferFunction match volume.wesl TransferFunction', () => {
+    const layout = transferFunctionKernel.TransferFunction;
+    expect(TRANSFER_FUNCTION_WORDS * 4).toBe(layout.size);
+    const rgba = Array.from({ length: 5 }, (_, k): [number, number, number, number] => [
+      k,
+      k + 0.5,
+      k + 0.25,
+      1 - k / 8,
+    ]);
+    const values = [-3, -1, 0, 2, 7];
+    const words = packTransferFunction({ count: 5, values, rgba });
+    const read = readStruct(layout, wordsOf(words.buffer));
+    expect(read.count).toBe(5);
+    expect(read.values.flat().slice(0, 5)).toEqual(values);
+    expect(read.rgba.slice(0, 5)).toEqual(rgba);
+  });
+
+  it('TranslucentParams is laid out alike in the three translucent kernels (one packer)', () => {
+    const path = KERNEL_LAYOUTS['kernels/translucent-path.wesl'].TranslucentParams;
+    expect(KERNEL_LAYOUTS['kernels/translucent-diffuse.wesl'].TranslucentParams).toEqual(path);
+    expect(KERNEL_LAYOUTS['kernels/translucent-gather.wesl'].TranslucentParams).toEqual(path);
   });
 });
 

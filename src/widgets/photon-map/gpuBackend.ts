@@ -8,6 +8,8 @@
 // functions on Dawn's device.
 import { gpuCore, type Lease } from '../../gpu/core.ts';
 import { withErrorScopes } from '../../gpu/errors.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { photonMapKernel } from '../../gpu/layouts.generated.ts';
 import type { GpuTiming } from '../base/imageKernel.ts';
 import {
   CAPACITY_PER_PHOTON,
@@ -20,8 +22,8 @@ import {
   type PhotonInputs,
 } from './model.ts';
 
-/** Byte size of PhotonParams (13 rows of 4 words). */
-const PARAMS_WORDS = 52;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = photonMapKernel.PhotonParams;
 
 export interface ParamsExtra {
   width: number;
@@ -32,30 +34,41 @@ export interface ParamsExtra {
 }
 
 export function packParams(inputs: PhotonInputs, extra: ParamsExtra): Uint32Array<ArrayBuffer> {
-  const u32 = new Uint32Array(PARAMS_WORDS);
-  const f32 = new Float32Array(u32.buffer);
   const grid = gridFor(inputs.radius);
   const frame = cameraFrame(extra.width, extra.height);
   const sigmaT = inputs.sigmaS + inputs.sigmaA;
-  const put = (at: number, v: readonly number[], w: number, asU32 = false): void => {
-    v.forEach((x, k) => ((asU32 ? u32 : f32)[at + k] = x));
-    f32[at + 3] = w;
-  };
-  put(0, SCENE.boxMin, sigmaT);
-  put(4, SCENE.boxMax, inputs.sigmaS / sigmaT);
-  put(8, SCENE.sphereCenter, SCENE.sphereRadius);
-  put(12, SCENE.sunDirection, sinThetaMax(inputs));
-  put(16, SCENE.diskCenter, SCENE.diskRadius);
-  put(20, grid.gridMin, grid.cellSize);
-  put(24, grid.dims, inputs.eta, true);
-  put(28, SCENE.cameraPosition, inputs.g);
-  put(32, frame.right, SCENE.irradiance);
-  put(36, frame.up, inputs.radius);
-  put(40, frame.forward, stepSizeFor(inputs.radius));
-  u32.set([extra.width, extra.height, extra.seed >>> 0, inputs.photons], 44);
-  const cells = grid.dims[0] * grid.dims[1] * grid.dims[2];
-  u32.set([CAPACITY_PER_PHOTON * inputs.photons, extra.samples, extra.queryCount, cells], 48);
-  return u32;
+  return packStruct(PARAMS, {
+    boxMin: SCENE.boxMin,
+    sigmaT,
+    boxMax: SCENE.boxMax,
+    albedo: inputs.sigmaS / sigmaT,
+    sphereCenter: SCENE.sphereCenter,
+    sphereRadius: SCENE.sphereRadius,
+    sunDirection: SCENE.sunDirection,
+    sinThetaMax: sinThetaMax(inputs),
+    diskCenter: SCENE.diskCenter,
+    diskRadius: SCENE.diskRadius,
+    gridMin: grid.gridMin,
+    cellSize: grid.cellSize,
+    gridDims: grid.dims,
+    eta: inputs.eta,
+    cameraPosition: SCENE.cameraPosition,
+    g: inputs.g,
+    cameraRight: frame.right,
+    irradiance: SCENE.irradiance,
+    cameraUp: frame.up,
+    radius: inputs.radius,
+    cameraForward: frame.forward,
+    stepSize: stepSizeFor(inputs.radius),
+    width: extra.width,
+    height: extra.height,
+    seed: extra.seed >>> 0,
+    photonCount: inputs.photons,
+    capacity: CAPACITY_PER_PHOTON * inputs.photons,
+    samples: extra.samples,
+    queryCount: extra.queryCount,
+    cellCount: grid.dims[0] * grid.dims[1] * grid.dims[2],
+  });
 }
 
 export interface PhotonMapGpuResult {

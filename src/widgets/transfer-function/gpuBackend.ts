@@ -7,6 +7,8 @@
 // layout. The output (colour planes and step counts) is read back: the widget
 // needs the numbers for the RMSE and paints them into a 2D canvas.
 import { withErrorScopes } from '../../gpu/errors.ts';
+import { packStruct } from '../../gpu/layout.ts';
+import { transferFunctionKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../../gpu/link.ts';
 import { GpuTimer } from '../../gpu/timing.ts';
 import type { DensityGridData } from '../../reference/medium.ts';
@@ -20,8 +22,8 @@ import { CT_RESCALE_INTERCEPT } from './phantom.ts';
 import { BACKGROUND, frameCamera, VOXEL, type FrameInputs, type VolumeImage } from './model.ts';
 
 const KERNEL = 'kernels/transfer-function.wesl';
-/** Words of TransferParams in the kernel. */
-const PARAMS_WORDS = 44;
+/** The kernel's uniform, laid out from its WGSL declaration. */
+const PARAMS = transferFunctionKernel.TransferParams;
 /** Output words per pixel: r, g, b, steps, planned steps, flags. */
 const WORDS_PER_PIXEL = 6;
 
@@ -42,35 +44,25 @@ export interface GpuRows extends VolumeImage {
 }
 
 export function packParams(request: RowsRequest, data: DensityGridData): Uint32Array<ArrayBuffer> {
-  const u32 = new Uint32Array(PARAMS_WORDS);
-  const f32 = new Float32Array(u32.buffer);
   const { grid } = data;
   const camera = frameCamera(request.inputs.azimuth, request.inputs.elevation, request.size);
-  u32[0] = request.size;
-  u32[1] = request.size;
-  u32[2] = request.rowStart;
-  u32[3] = request.rowEnd - request.rowStart;
-  // Camera (80 bytes): position, projection, forward, right, up (each vec3f + a pad
-  // word), halfExtent, imageSize.
-  camera.position.forEach((v, a) => (f32[4 + a] = v));
-  u32[7] = camera.projection;
-  camera.forward.forEach((v, a) => (f32[8 + a] = v));
-  camera.right.forEach((v, a) => (f32[12 + a] = v));
-  camera.up.forEach((v, a) => (f32[16 + a] = v));
-  f32[20] = camera.halfExtent[0];
-  f32[21] = camera.halfExtent[1];
-  f32[22] = camera.imageSize[0];
-  f32[23] = camera.imageSize[1];
-  grid.dimensions.forEach((n, a) => (u32[24 + a] = n));
-  f32[27] = CT_RESCALE_INTERCEPT;
-  grid.boundsMin.forEach((v, a) => (f32[28 + a] = v));
-  f32[31] = grid.densityScale;
-  grid.boundsMax.forEach((v, a) => (f32[32 + a] = v));
-  f32[35] = VOXEL;
-  BACKGROUND.forEach((v, a) => (f32[36 + a] = v));
-  f32[39] = request.stepVoxels * VOXEL;
-  f32[40] = request.threshold;
-  return u32;
+  const { position, projection, forward, right, up, halfExtent, imageSize } = camera;
+  return packStruct(PARAMS, {
+    width: request.size,
+    height: request.size,
+    rowOffset: request.rowStart,
+    rows: request.rowEnd - request.rowStart,
+    camera: { position, projection, forward, right, up, halfExtent, imageSize },
+    dimensions: grid.dimensions,
+    valueOffset: CT_RESCALE_INTERCEPT,
+    boundsMin: grid.boundsMin,
+    densityScale: grid.densityScale,
+    boundsMax: grid.boundsMax,
+    referenceStep: VOXEL,
+    background: BACKGROUND,
+    stepSize: request.stepVoxels * VOXEL,
+    threshold: request.threshold,
+  });
 }
 
 export class VolumeRendererGpu {
