@@ -10,6 +10,8 @@
 // textures) needs a `wrapper`: a WGSL `fn caseUnderTest(...)` with a supported
 // signature that calls the function. signatureOf() reads a function's signature from
 // the library with the WESL parser and builds that wrapper for vecNf arguments.
+// The exercise grader (src/grading/grade.ts) builds its harness from the same pieces:
+// the word encoding (encodeScalar, bitsToF32) and the argument loads (argumentLoads).
 import { parseSrcModule, type FnElem, type TypeRefElem } from 'wesl';
 import { runCompute } from './compute.ts';
 import { linkKernel, type ShaderLibrary } from './link.ts';
@@ -62,17 +64,18 @@ export function resultWords(type: ResultType): number {
 
 const scratch = new DataView(new ArrayBuffer(4));
 
-function f32ToBits(value: number): number {
+export function f32ToBits(value: number): number {
   scratch.setFloat32(0, value);
   return scratch.getUint32(0);
 }
 
-function bitsToF32(bits: number): number {
+export function bitsToF32(bits: number): number {
   scratch.setUint32(0, bits >>> 0);
   return scratch.getFloat32(0);
 }
 
-function encodeScalar(type: ScalarType | 'f32', value: number): number {
+/** The u32 word the GPU reads for a scalar argument (f32 bits, i32 two's complement). */
+export function encodeScalar(type: ScalarType, value: number): number {
   if (type === 'f32') return f32ToBits(value);
   if (type === 'i32') return (value | 0) >>> 0;
   return value >>> 0;
@@ -85,25 +88,43 @@ export function asGpuSees(type: ArgumentType, value: Argument): Argument {
   return value;
 }
 
-export function generateKernel(spec: FunctionSpec, caseCount: number): string {
-  const strides = spec.args.map(argumentWords);
-  const stride = strides.reduce((a, b) => a + b, 0);
+/**
+ * WGSL statements that declare each argument `name` from consecutive words of the u32
+ * array `inputs`, starting at the u32 expression `base` (arguments packed as
+ * packArguments packs them).
+ */
+export function argumentLoads(
+  args: readonly { type: ArgumentType; name: string }[],
+  inputs: string,
+  base: string,
+): string[] {
   const lines: string[] = [];
   let offset = 0;
-  spec.args.forEach((type, index) => {
-    if (type === 'f32') lines.push(`  let a${index} = bitcast<f32>(inputs[base + ${offset}u]);`);
-    else if (type === 'u32') lines.push(`  let a${index} = inputs[base + ${offset}u];`);
-    else if (type === 'i32')
-      lines.push(`  let a${index} = bitcast<i32>(inputs[base + ${offset}u]);`);
+  for (const { type, name } of args) {
+    const word = `${inputs}[${base} + ${offset}u]`;
+    if (type === 'f32') lines.push(`  let ${name} = bitcast<f32>(${word});`);
+    else if (type === 'u32') lines.push(`  let ${name} = ${word};`);
+    else if (type === 'i32') lines.push(`  let ${name} = bitcast<i32>(${word});`);
     else {
       const n = argumentWords(type);
-      lines.push(`  var a${index}: array<f32, ${n}>;`);
+      lines.push(`  var ${name}: array<f32, ${n}>;`);
       lines.push(
-        `  for (var k = 0u; k < ${n}u; k++) { a${index}[k] = bitcast<f32>(inputs[base + ${offset}u + k]); }`,
+        `  for (var k = 0u; k < ${n}u; k++) { ${name}[k] = bitcast<f32>(${inputs}[${base} + ${offset}u + k]); }`,
       );
     }
     offset += argumentWords(type);
-  });
+  }
+  return lines;
+}
+
+export function generateKernel(spec: FunctionSpec, caseCount: number): string {
+  const strides = spec.args.map(argumentWords);
+  const stride = strides.reduce((a, b) => a + b, 0);
+  const lines = argumentLoads(
+    spec.args.map((type, index) => ({ type, name: `a${index}` })),
+    'inputs',
+    'base',
+  );
   const callee = spec.wrapper ? 'caseUnderTest' : spec.fn;
   const call = `${callee}(${spec.args.map((_, i) => `a${i}`).join(', ')})`;
   const words = resultWords(spec.result);

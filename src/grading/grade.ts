@@ -7,6 +7,21 @@
 // GPU thread. The reference solution runs through the same harness, linked with WESL
 // against the shader library. A watchdog bounds every GPU wait, and device loss is
 // reported instead of thrown.
+import { runPipeline } from '../gpu/compute.ts';
+import { gpuCore } from '../gpu/core.ts';
+import {
+  GpuError,
+  withErrorScopes,
+  type CompilationNote,
+  type GpuErrorKind,
+} from '../gpu/errors.ts';
+import {
+  argumentLoads,
+  bitsToF32,
+  encodeScalar,
+  type ScalarType,
+} from '../gpu/functionEvaluator.ts';
+import { prefixedDeclarations } from '../gpu/libraryDeclarations.ts';
 import { linkKernel, type ShaderLibrary } from '../gpu/link.ts';
 import { loadExercise } from '../../exercises/index.ts';
 import {
@@ -88,27 +103,39 @@ interface Program {
   role: 'student' | 'reference';
 }
 
-function harness(exercise: ExerciseDefinition): string {
+/** The library's PCG hash (rng.wesl's pcgHash) as sbg_pcgHash, per library. */
+const harnessHashes = new WeakMap<ShaderLibrary, string>();
+
+function harnessHash(library: ShaderLibrary): string {
+  let text = harnessHashes.get(library);
+  if (text === undefined) {
+    text = prefixedDeclarations(library, 'rng', ['pcgHash'], 'sbg_');
+    harnessHashes.set(library, text);
+  }
+  return text;
+}
+
+/**
+ * The kernel that calls the subject once per thread: its arguments read as the
+ * function evaluator (src/gpu/functionEvaluator.ts) reads them, after a header of
+ * HEADER_WORDS words; the state of a `ptr<function, u32>` parameter seeded with the
+ * library's PCG hash, taken from rng.wesl under the harness's sbg_ prefix (a
+ * submission may declare any name of its own, even pcgHash).
+ */
+function harness(exercise: ExerciseDefinition, library: ShaderLibrary): string {
   const subject = exercise.subject;
-  const lines: string[] = [];
   const callArgs: string[] = [];
-  let offset = 0;
+  const args: { type: ScalarType; name: string }[] = [];
   subject.params.forEach((param, index) => {
     if (param.type === 'ptr<function, u32>') {
       callArgs.push('&sbg_state');
       return;
     }
-    const word = `sbg_inputs[sbg_base + ${offset}u]`;
-    lines.push(
-      param.type === 'f32'
-        ? `  let sbg_a${index} = bitcast<f32>(${word});`
-        : param.type === 'i32'
-          ? `  let sbg_a${index} = bitcast<i32>(${word});`
-          : `  let sbg_a${index} = ${word};`,
-    );
+    args.push({ type: param.type, name: `sbg_a${index}` });
     callArgs.push(`sbg_a${index}`);
-    offset += 1;
   });
+  const lines = argumentLoads(args, 'sbg_inputs', 'sbg_base');
+  let offset = args.length;
   // A hidden medium's parameters: private variables of the helpers, filled from words
   // after the arguments (the student's function never receives them).
   for (const name of exercise.helpers?.extraInputs ?? []) {
@@ -123,19 +150,14 @@ function harness(exercise: ExerciseDefinition): string {
     '@group(0) @binding(1) var<storage, read_write> sbg_outputs: array<u32>;',
     `var<private> ${GUARD_COUNTER}: u32;`,
     `var<private> ${GUARD_FLAG}: u32;`,
-    // The PCG hash of rng.wesl (pcgHash), repeated here so the harness needs no import.
-    'fn sbg_hash(value: u32) -> u32 {',
-    '  let s = value * 747796405u + 2891336453u;',
-    '  let w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;',
-    '  return (w >> 22u) ^ w;',
-    '}',
+    harnessHash(library),
     `@compute @workgroup_size(${WORKGROUP_SIZE})`,
     'fn sbg_main(@builtin(global_invocation_id) sbg_id: vec3u) {',
     '  let sbg_i = sbg_id.x;',
     '  if (sbg_i >= sbg_inputs[0]) { return; }',
     `  let sbg_base = ${HEADER_WORDS}u + sbg_i * ${Math.max(inputStride(exercise), 1)}u;`,
     ...lines,
-    '  var sbg_state = sbg_hash(sbg_inputs[1] ^ sbg_hash(sbg_i));',
+    '  var sbg_state = sbg_pcgHash(sbg_inputs[1] ^ sbg_pcgHash(sbg_i));',
     `  ${GUARD_COUNTER} = 0u;`,
     `  ${GUARD_FLAG} = 0u;`,
     ...counters.map((name) => `  ${name} = 0u;`),
@@ -226,56 +248,73 @@ export async function withDeviceGuards<T>(
   }
 }
 
-/** Compiles `code`; errors become SourceDiagnostics through `map` (null: not the student's). */
+/** Every wait on the device for `what`, under the watchdog and the device-loss guard. */
+function guarded(device: GPUDevice, timeoutMs: number, what: string) {
+  return <T>(promise: Promise<T>): Promise<T> => withDeviceGuards(device, timeoutMs, what, promise);
+}
+
+/**
+ * Compiles `code` through the GPU core (a module is cached by its code); compiler
+ * messages become SourceDiagnostics through `map` (null: not the student's).
+ */
 async function compile(
   device: GPUDevice,
   code: string,
   map: (line: number, column: number) => { line: number; column: number } | null,
   timeoutMs: number,
-): Promise<{ module: GPUShaderModule; diagnostics: SourceDiagnostic[] }> {
-  device.pushErrorScope('validation');
-  const module = device.createShaderModule({ code });
-  const scope = device.popErrorScope();
-  const info = await withDeviceGuards(
-    device,
-    timeoutMs,
-    'compiling your shader',
-    module.getCompilationInfo(),
-  );
-  await withDeviceGuards(device, timeoutMs, 'compiling your shader', scope);
+): Promise<{ diagnostics: SourceDiagnostic[] }> {
+  const what = 'compiling your shader';
+  const wait = guarded(device, timeoutMs, what);
+  let notes: readonly CompilationNote[];
+  try {
+    const module = await withErrorScopes(device, what, () => gpuCore(device).shaderModule(code), {
+      wait,
+    });
+    const info = await wait(module.getCompilationInfo());
+    notes = info.messages
+      .filter((m) => m.type !== 'info')
+      .map((m) => ({ type: m.type, line: m.lineNum, column: m.linePos, message: m.message }));
+  } catch (error) {
+    // A module that does not compile is a validation error with the compiler's messages
+    // (any other GPU error is the grader's and propagates).
+    if (!(error instanceof GpuError) || error.kind !== 'validation') throw error;
+    notes = error.compilation.some((note) => note.type === 'error')
+      ? error.compilation
+      : [...error.compilation, { type: 'error', line: 0, column: 0, message: error.detail }];
+  }
   const diagnostics: SourceDiagnostic[] = [];
-  for (const message of info.messages) {
-    if (message.type === 'info') continue;
-    const mapped = map(message.lineNum, message.linePos);
+  for (const note of notes) {
+    const mapped = map(note.line, note.column);
     diagnostics.push({
       line: mapped?.line ?? 0,
       column: mapped?.column ?? 0,
-      message: mapped
-        ? withEngineNote(message.message)
-        : `(in the grader's harness) ${message.message}`,
-      severity: message.type === 'error' ? 'error' : 'warning',
+      message: mapped ? withEngineNote(note.message) : `(in the grader's harness) ${note.message}`,
+      severity: note.type === 'error' ? 'error' : 'warning',
     });
   }
-  return { module, diagnostics };
+  return { diagnostics };
 }
 
+/** The harness's pipeline for compiled `code` (from the core's cache), or the device's refusal. */
 async function createPipeline(
   device: GPUDevice,
-  module: GPUShaderModule,
+  code: string,
   timeoutMs = DEFAULT_TIMEOUT_MS,
-): Promise<{ pipeline: GPUComputePipeline; error: string | null }> {
-  device.pushErrorScope('validation');
-  const pipeline = device.createComputePipeline({
-    layout: 'auto',
-    compute: { module, entryPoint: 'sbg_main' },
-  });
-  const error = await withDeviceGuards(
-    device,
-    timeoutMs,
-    'creating the pipeline',
-    device.popErrorScope(),
-  );
-  return { pipeline, error: error ? error.message : null };
+): Promise<{ pipeline: GPUComputePipeline; error: null } | { pipeline: null; error: string }> {
+  const what = 'creating the pipeline';
+  try {
+    const pipeline = await withErrorScopes(
+      device,
+      what,
+      () => gpuCore(device).computePipeline({ code, entryPoint: 'sbg_main' }),
+      { wait: guarded(device, timeoutMs, what) },
+    );
+    return { pipeline, error: null };
+  } catch (error) {
+    if (error instanceof GpuError && error.kind === 'validation')
+      return { pipeline: null, error: error.detail };
+    throw error;
+  }
 }
 
 function countLines(text: string): number {
@@ -376,12 +415,8 @@ async function prepareStudent(
     });
   }
   // 3. The submission with the harness after it (its line numbers stay the same).
-  const full = await compile(
-    device,
-    `${head}${instrumented.source}\n${harness(exercise)}\n`,
-    mapper(instrumented.insertions),
-    timeoutMs,
-  );
+  const fullCode = `${head}${instrumented.source}\n${harness(exercise, library)}\n`;
+  const full = await compile(device, fullCode, mapper(instrumented.insertions), timeoutMs);
   const fullErrors = full.diagnostics.filter((d) => d.severity === 'error');
   if (fullErrors.length > 0) {
     throw new GradeStop({
@@ -390,8 +425,8 @@ async function prepareStudent(
       message: `Your shader does not compile with the grader's harness: ${fullErrors[0]?.message ?? ''}`,
     });
   }
-  const { pipeline, error } = await createPipeline(device, full.module, timeoutMs);
-  if (error) {
+  const { pipeline, error } = await createPipeline(device, fullCode, timeoutMs);
+  if (error !== null) {
     // With bindings and entry points refused this is rare (e.g. workgroup memory past
     // the device's limits); it is the student's shader, so an outcome, never a throw.
     throw new GradeStop({
@@ -406,63 +441,35 @@ async function prepareStudent(
   };
 }
 
-const referencePrograms = new WeakMap<GPUDevice, Map<string, Promise<Program>>>();
-
-/** The reference solution linked with WESL against the library (cached per device). */
-function prepareReference(
+/**
+ * The reference solution linked with WESL against the library. Not cached here: the
+ * link (src/gpu/link.ts) and the module and pipeline (the GPU core) are cached by
+ * their text.
+ */
+async function prepareReference(
   device: GPUDevice,
   library: ShaderLibrary,
   exercise: ExerciseDefinition,
   timeoutMs: number,
 ): Promise<Program> {
-  let perDevice = referencePrograms.get(device);
-  if (!perDevice) {
-    perDevice = new Map();
-    referencePrograms.set(device, perDevice);
-  }
-  const key = `${exercise.id}\n${exercise.reference}\n${JSON.stringify(exercise.helpers ?? null)}`;
-  let program = perDevice.get(key);
-  if (!program) {
-    program = (async () => {
-      const importLine = /^[ \t]*import[^;\n]*;[ \t]*$/gm;
-      const imports = new Set([
-        ...(exercise.helpers?.imports ?? []),
-        ...(exercise.reference.match(importLine) ?? []).map((s) => s.trim()),
-      ]);
-      const root = [
-        ...imports,
-        exercise.reference.replace(importLine, ''),
-        exercise.helpers?.wgsl ?? '',
-        harness(exercise),
-      ].join('\n');
-      const code = await linkKernel(library, root);
-      const { module, diagnostics } = await compile(device, code, () => null, timeoutMs);
-      const error = diagnostics.find((d) => d.severity === 'error');
-      if (error) throw new Error(`reference solution of ${exercise.id}: ${error.message}`);
-      const created = await createPipeline(device, module);
-      if (created.error) throw new Error(`reference of ${exercise.id}: ${created.error}`);
-      return { pipeline: created.pipeline, role: 'reference' as const };
-    })();
-    perDevice.set(key, program);
-    program.catch(() => perDevice?.delete(key));
-  }
-  return program;
-}
-
-const scratch = new DataView(new ArrayBuffer(4));
-
-function encode(type: string, value: number): number {
-  if (type === 'f32') {
-    scratch.setFloat32(0, value);
-    return scratch.getUint32(0);
-  }
-  if (type === 'i32') return (value | 0) >>> 0;
-  return value >>> 0;
-}
-
-function decodeF32(bits: number): number {
-  scratch.setUint32(0, bits >>> 0);
-  return scratch.getFloat32(0);
+  const importLine = /^[ \t]*import[^;\n]*;[ \t]*$/gm;
+  const imports = new Set([
+    ...(exercise.helpers?.imports ?? []),
+    ...(exercise.reference.match(importLine) ?? []).map((s) => s.trim()),
+  ]);
+  const root = [
+    ...imports,
+    exercise.reference.replace(importLine, ''),
+    exercise.helpers?.wgsl ?? '',
+    harness(exercise, library),
+  ].join('\n');
+  const code = await linkKernel(library, root);
+  const { diagnostics } = await compile(device, code, () => null, timeoutMs);
+  const error = diagnostics.find((d) => d.severity === 'error');
+  if (error) throw new Error(`reference solution of ${exercise.id}: ${error.message}`);
+  const created = await createPipeline(device, code);
+  if (created.error !== null) throw new Error(`reference of ${exercise.id}: ${created.error}`);
+  return { pipeline: created.pipeline, role: 'reference' };
 }
 
 /**
@@ -474,7 +481,7 @@ function decodeF32(bits: number): number {
 function dispatchStop(
   program: Program,
   what: string,
-  kind: 'validation' | 'out-of-memory',
+  kind: GpuErrorKind,
   detail: string,
 ): GradeStop {
   if (program.role === 'student' && kind === 'validation') {
@@ -519,7 +526,7 @@ async function runDetailed(
   what: string,
 ): Promise<RunOutput> {
   const types = [
-    ...exercise.subject.params.filter((p) => p.type !== 'ptr<function, u32>').map((p) => p.type),
+    ...exercise.subject.params.flatMap((p) => (p.type === 'ptr<function, u32>' ? [] : [p.type])),
     ...(exercise.helpers?.extraInputs ?? []).map(() => 'f32' as const),
   ];
   const stride = Math.max(inputStride(exercise), 1);
@@ -529,55 +536,31 @@ async function runDetailed(
   inputs[1] = seed >>> 0;
   calls.forEach((args, i) => {
     types.forEach((type, k) => {
-      inputs[HEADER_WORDS + i * stride + k] = encode(type, args[k] ?? 0);
+      inputs[HEADER_WORDS + i * stride + k] = encodeScalar(type, args[k] ?? 0);
     });
   });
-  const outputBytes = Math.max(4 * words, calls.length * 4 * words);
-  device.pushErrorScope('out-of-memory');
-  device.pushErrorScope('validation');
-  const input = device.createBuffer({
-    size: inputs.byteLength,
-    usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
-  });
-  device.queue.writeBuffer(input, 0, inputs);
-  const output = device.createBuffer({
-    size: outputBytes,
-    usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
-  });
-  const readBack = device.createBuffer({
-    size: outputBytes,
-    usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
-  });
-  const encoder = device.createCommandEncoder();
-  const pass = encoder.beginComputePass();
-  pass.setPipeline(program.pipeline);
-  pass.setBindGroup(
-    0,
-    device.createBindGroup({
-      layout: program.pipeline.getBindGroupLayout(0),
-      entries: [
-        { binding: 0, resource: { buffer: input } },
-        { binding: 1, resource: { buffer: output } },
-      ],
-    }),
-  );
-  pass.dispatchWorkgroups(Math.max(1, Math.ceil(calls.length / WORKGROUP_SIZE)));
-  pass.end();
-  encoder.copyBufferToBuffer(output, 0, readBack, 0, outputBytes);
-  device.queue.submit([encoder.finish()]);
   try {
-    const validation = await withDeviceGuards(device, timeoutMs, what, device.popErrorScope());
-    const memory = await withDeviceGuards(device, timeoutMs, what, device.popErrorScope());
-    if (validation) throw dispatchStop(program, what, 'validation', validation.message);
-    if (memory) throw dispatchStop(program, what, 'out-of-memory', memory.message);
-    await withDeviceGuards(device, timeoutMs, what, readBack.mapAsync(GPUMapMode.READ));
-    const data = new Uint32Array(readBack.getMappedRange().slice(0));
-    readBack.unmap();
+    // The core's dispatch: pooled buffers, every wait under the watchdog; an error the
+    // device reports becomes the outcome dispatchStop chooses for its kind.
+    const { output: data } = await runPipeline(
+      device,
+      program.pipeline,
+      {
+        inputs: [inputs],
+        outputWords: Math.max(words, calls.length * words),
+        workgroups: [Math.max(1, Math.ceil(calls.length / WORKGROUP_SIZE))],
+      },
+      { what, wait: guarded(device, timeoutMs, what), timed: false },
+    ).catch((error: unknown) => {
+      throw error instanceof GpuError
+        ? dispatchStop(program, what, error.kind, error.detail)
+        : error;
+    });
     const results: number[] = [];
     const counters = (exercise.helpers?.counters ?? []).map(() => new Array<number>(calls.length));
     let budgetHit = -1;
     for (let i = 0; i < calls.length; i++) {
-      results.push(decodeF32(data[words * i] ?? 0));
+      results.push(bitsToF32(data[words * i] ?? 0));
       if (budgetHit < 0 && data[words * i + 1] !== 0) budgetHit = i;
       counters.forEach((counter, k) => {
         counter[i] = data[words * i + 2 + k] ?? 0;
@@ -608,10 +591,6 @@ async function runDetailed(
           'whose body does far more than one step.',
       });
     throw error;
-  } finally {
-    input.destroy();
-    output.destroy();
-    readBack.destroy();
   }
 }
 
