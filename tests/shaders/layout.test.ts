@@ -16,7 +16,11 @@ import {
   uniformViolations,
 } from '../../src/gpu/layoutDerive.ts';
 import { deriveKernelLayouts } from '../../src/gpu/layoutGenerate.ts';
-import { KERNEL_LAYOUTS } from '../../src/gpu/layouts.generated.ts';
+import {
+  KERNEL_LAYOUTS,
+  rayleighSkyKernel,
+  vreRayKernel,
+} from '../../src/gpu/layouts.generated.ts';
 import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 
 const offsets = (layout: StructLayout): Record<string, number> =>
@@ -192,6 +196,30 @@ describe('packStruct', () => {
 });
 
 describe('generated layout table', () => {
+  it('types a generated layout’s members: an unknown or a missing one does not compile', () => {
+    const layout = vreRayKernel.VreRayParams;
+    const values = {
+      sigma: 1,
+      albedo: 0.5,
+      emission: 0,
+      inscatter: 0,
+      background: 0,
+      length: 1,
+      steps: 4,
+      viewMin: 0,
+      viewMax: 1,
+      width: 2,
+      height: 2,
+    };
+    expect(packStruct(layout, values).byteLength).toBe(48);
+    // @ts-expect-error: VreRayParams has no member sigmaT
+    expect(() => packStruct(layout, { ...values, sigmaT: 1 })).toThrow('has no member "sigmaT"');
+    // @ts-expect-error: steps and the rest are missing
+    expect(() => packStruct(layout, { sigma: 1 })).toThrow('member "albedo" of VreRayParams');
+    // @ts-expect-error: a vec4f member takes numbers, not a number
+    expect(() => packStruct(rayleighSkyKernel.SkyParams, { probeMu: 1 })).toThrow();
+  });
+
   it('equals the layouts derived now from every linked kernel (run `npx tsx src/gpu/layoutGenerate.ts` if not)', async () => {
     expect(await deriveKernelLayouts(SHADER_LIBRARY)).toEqual(KERNEL_LAYOUTS);
   });
