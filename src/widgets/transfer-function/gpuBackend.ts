@@ -6,11 +6,11 @@
 // storage-buffer bindings cannot hold, so this backend binds it through its own
 // layout. The output (colour planes and step counts) is read back: the widget
 // needs the numbers for the RMSE and paints them into a 2D canvas.
+import { gpuCore, mapRange } from '../../gpu/core.ts';
 import { withErrorScopes } from '../../gpu/errors.ts';
 import { packStruct } from '../../gpu/layout.ts';
 import { transferFunctionKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../../gpu/link.ts';
-import { GpuTimer } from '../../gpu/timing.ts';
 import type { DensityGridData } from '../../reference/medium.ts';
 import {
   packTransferFunction,
@@ -83,21 +83,21 @@ export class VolumeRendererGpu {
     const code = await linkLibraryKernel(library, KERNEL);
     const [nx, ny, nz] = data.grid.dimensions;
     const parts = await withErrorScopes(device, 'transfer-function pipeline', () => {
-      const layout = device.createBindGroupLayout({
-        entries: [
-          { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
-          { binding: 1, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
-          {
-            binding: 2,
-            visibility: GPUShaderStage.COMPUTE,
-            texture: { sampleType: 'unfilterable-float', viewDimension: '3d' },
-          },
-          { binding: 3, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'storage' } },
-        ],
-      });
-      const pipeline = device.createComputePipeline({
-        layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
-        compute: { module: device.createShaderModule({ code }), entryPoint: 'renderImage' },
+      const core = gpuCore(device);
+      const layout = core.bindGroupLayout([
+        { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
+        { binding: 1, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
+        {
+          binding: 2,
+          visibility: GPUShaderStage.COMPUTE,
+          texture: { sampleType: 'unfilterable-float', viewDimension: '3d' },
+        },
+        { binding: 3, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'storage' } },
+      ]);
+      const pipeline = core.computePipeline({
+        code,
+        entryPoint: 'renderImage',
+        layout: core.pipelineLayout([layout]),
       });
       const texture = device.createTexture({
         size: [nx, ny, nz],
@@ -123,84 +123,91 @@ export class VolumeRendererGpu {
     const rows = Math.max(0, Math.min(request.rowEnd, request.size) - request.rowStart);
     const pixels = rows * request.size;
     const outputBytes = Math.max(16, WORDS_PER_PIXEL * pixels * 4);
-    const made: GPUBuffer[] = [];
-    const buffer = (size: number, usage: number, data?: Uint32Array): GPUBuffer => {
-      const b = device.createBuffer({ size: Math.ceil(size / 16) * 16, usage });
-      if (data) device.queue.writeBuffer(b, 0, data.buffer, data.byteOffset, data.byteLength);
-      made.push(b);
-      return b;
-    };
-    const timer = new GpuTimer(device);
-    try {
-      const readBack = await withErrorScopes(device, 'transfer-function render', () => {
-        const UNIFORM = GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST;
-        const params = packParams(request, this.data);
-        const tfWords = packTransferFunction(
-          request.inputs.tf as TransferFunction,
-          new Uint32Array(TRANSFER_FUNCTION_WORDS),
-        );
-        const output = buffer(outputBytes, GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC);
-        const read = buffer(outputBytes, GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST);
-        const bindGroup = device.createBindGroup({
-          layout: this.layout,
-          entries: [
-            { binding: 0, resource: { buffer: buffer(params.byteLength, UNIFORM, params) } },
-            { binding: 1, resource: { buffer: buffer(tfWords.byteLength, UNIFORM, tfWords) } },
-            { binding: 2, resource: this.texture.createView() },
-            { binding: 3, resource: { buffer: output } },
-          ],
+    // Buffers and timer leased from the GPU core's pools; bound with their own sizes.
+    return gpuCore(device)
+      .lease()
+      .run(async (lease) => {
+        const sized = (bytes: number): number => Math.ceil(bytes / 16) * 16;
+        const uniform = (purpose: string, data: Uint32Array): GPUBufferBinding => ({
+          buffer: lease.upload(
+            `transfer-function.${purpose}`,
+            data,
+            GPUBufferUsage.UNIFORM,
+            sized(data.byteLength),
+          ),
+          size: sized(data.byteLength),
         });
-        const encoder = device.createCommandEncoder();
-        const pass = encoder.beginComputePass(timer.passDescriptor());
-        pass.setPipeline(this.pipeline);
-        pass.setBindGroup(0, bindGroup);
-        pass.dispatchWorkgroups(Math.ceil(request.size / 8), Math.ceil(Math.max(rows, 1) / 8));
-        pass.end();
-        timer.resolve(encoder);
-        encoder.copyBufferToBuffer(output, 0, read, 0, outputBytes);
-        device.queue.submit([encoder.finish()]);
-        return read;
+        const timer = lease.timer();
+        const readBack = await withErrorScopes(device, 'transfer-function render', () => {
+          const params = packParams(request, this.data);
+          const tfWords = packTransferFunction(
+            request.inputs.tf as TransferFunction,
+            new Uint32Array(TRANSFER_FUNCTION_WORDS),
+          );
+          const output = lease.buffer(
+            'transfer-function.output',
+            sized(outputBytes),
+            GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
+            true,
+          );
+          const read = lease.buffer(
+            'transfer-function.read',
+            outputBytes,
+            GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+          );
+          const bindGroup = device.createBindGroup({
+            layout: this.layout,
+            entries: [
+              { binding: 0, resource: uniform('params', params) },
+              { binding: 1, resource: uniform('tf', tfWords) },
+              { binding: 2, resource: this.texture.createView() },
+              { binding: 3, resource: { buffer: output, size: sized(outputBytes) } },
+            ],
+          });
+          const encoder = device.createCommandEncoder();
+          const pass = encoder.beginComputePass(timer.passDescriptor());
+          pass.setPipeline(this.pipeline);
+          pass.setBindGroup(0, bindGroup);
+          pass.dispatchWorkgroups(Math.ceil(request.size / 8), Math.ceil(Math.max(rows, 1) / 8));
+          pass.end();
+          timer.resolve(encoder);
+          encoder.copyBufferToBuffer(output, 0, read, 0, outputBytes);
+          device.queue.submit([encoder.finish()]);
+          return read;
+        });
+        const start = performance.now();
+        const words = new Uint32Array(await mapRange(readBack, WORDS_PER_PIXEL * pixels * 4));
+        const wallMs = performance.now() - start;
+        const gpuMs = await timer.read();
+        const rgb = new Float32Array(words.buffer, 0, 3 * pixels);
+        const stepsPerPixel = words.slice(3 * pixels, 4 * pixels);
+        const plannedPerPixel = words.slice(4 * pixels, 5 * pixels);
+        let steps = 0;
+        let plannedSteps = 0;
+        let terminatedRays = 0;
+        let cappedRays = 0;
+        for (let i = 0; i < pixels; i++) {
+          steps += words[3 * pixels + i]!;
+          plannedSteps += words[4 * pixels + i]!;
+          const flags = words[5 * pixels + i]!;
+          terminatedRays += flags & 1;
+          cappedRays += (flags >> 1) & 1;
+        }
+        return {
+          size: request.size,
+          rgb,
+          steps,
+          plannedSteps,
+          terminatedRays,
+          cappedRays,
+          stepsPerPixel,
+          plannedPerPixel,
+          rowStart: request.rowStart,
+          rows,
+          milliseconds: gpuMs ?? wallMs,
+          timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+        };
       });
-      const start = performance.now();
-      await readBack.mapAsync(GPUMapMode.READ);
-      const wallMs = performance.now() - start;
-      const words = new Uint32Array(
-        readBack.getMappedRange().slice(0, WORDS_PER_PIXEL * pixels * 4),
-      );
-      readBack.unmap();
-      const gpuMs = await timer.read();
-      const rgb = new Float32Array(words.buffer, 0, 3 * pixels);
-      const stepsPerPixel = words.slice(3 * pixels, 4 * pixels);
-      const plannedPerPixel = words.slice(4 * pixels, 5 * pixels);
-      let steps = 0;
-      let plannedSteps = 0;
-      let terminatedRays = 0;
-      let cappedRays = 0;
-      for (let i = 0; i < pixels; i++) {
-        steps += words[3 * pixels + i]!;
-        plannedSteps += words[4 * pixels + i]!;
-        const flags = words[5 * pixels + i]!;
-        terminatedRays += flags & 1;
-        cappedRays += (flags >> 1) & 1;
-      }
-      return {
-        size: request.size,
-        rgb,
-        steps,
-        plannedSteps,
-        terminatedRays,
-        cappedRays,
-        stepsPerPixel,
-        plannedPerPixel,
-        rowStart: request.rowStart,
-        rows,
-        milliseconds: gpuMs ?? wallMs,
-        timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
-      };
-    } finally {
-      timer.destroy();
-      for (const b of made) b.destroy();
-    }
   }
 
   destroy(): void {
