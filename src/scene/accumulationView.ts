@@ -4,7 +4,7 @@
 // holds one pixel per image pixel (CSS scales it). Per draw: one 32-byte uniform write
 // and one render pass; the bind group of an accumulation is made once.
 import { withErrorScopes } from '../gpu/errors.ts';
-import { linkLibraryKernel, type ShaderLibrary } from '../gpu/link.ts';
+import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { keepForPrint } from '../widgets/base/print.ts';
 import type { GpuAccumulation } from './gpuAccumulation.ts';
 
@@ -26,7 +26,7 @@ const pipelines = new WeakMap<GPUDevice, Map<GPUTextureFormat, Promise<DisplayPi
 
 function displayPipeline(
   device: GPUDevice,
-  library: ShaderLibrary,
+  library: KernelLibrary,
   format: GPUTextureFormat,
 ): Promise<DisplayPipeline> {
   let perDevice = pipelines.get(device);
@@ -108,7 +108,7 @@ export class AccumulationView {
   /** Configures `canvas` for WebGPU on `device`; the canvas must not have a 2D context. */
   static async create(
     device: GPUDevice,
-    library: ShaderLibrary,
+    library: KernelLibrary,
     canvas: HTMLCanvasElement,
   ): Promise<AccumulationView> {
     const context = canvas.getContext('webgpu');

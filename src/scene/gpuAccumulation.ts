@@ -110,7 +110,7 @@ export class GpuAccumulation implements Accumulation {
     this.moments = moments;
     this.mask = device.createBuffer({
       size: 4 * pixels,
-      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
     });
     this.statisticsBuffer = device.createBuffer({
       size: STATISTICS_BYTES,

@@ -5,11 +5,19 @@
 // and another seed (cached per scene) gives the error, plotted against the accumulated
 // GPU time on log–log axes next to the slope −½ of Monte Carlo. The plan of the scene
 // (src/scene/plan.ts) is listed effect by effect, and the specialized kernel's time per
-// sample is measured against the general kernel's (DESIGN.md contract 3).
+// sample is measured against the general kernel's (DESIGN.md contract 3). On WebGPU the
+// image accumulates on the GPU and both pictures are drawn from there
+// (src/scene/accumulationView.ts); a frame reads back only reduced statistics.
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import type { GpuContext } from '../../gpu/device.ts';
-import { ImageAccumulator } from '../../scene/accumulation.ts';
+import type { Accumulation, ImageAccumulator } from '../../scene/accumulation.ts';
+import {
+  AccumulationView,
+  canvasForContext,
+  type AccumulationPicture,
+} from '../../scene/accumulationView.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
+import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene, type ResolvedScene } from '../../scene/load.ts';
@@ -19,7 +27,7 @@ import type { PassRenderer, PassTiming } from '../../scene/render.ts';
 import { parseScene } from '../../scene/validate.ts';
 import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { timingLabel } from '../base/imageKernel.ts';
+import { timingLabel } from '../base/timing.ts';
 import {
   gradientCss,
   imageCanvas,
@@ -43,8 +51,6 @@ import {
   REFERENCE_SEED,
   buildScene,
   inputsFrom,
-  rmsStandardError,
-  rmse,
   sceneKey,
   type SingleScatterInputs,
 } from './model.ts';
@@ -91,10 +97,9 @@ function errorColour(x: number): [number, number, number] {
 
 type Renderer = GpuContext;
 
-/** A progressive render of one scene: its renderer, accumulator and pass size. */
-interface Accumulation {
+/** A progressive render of one scene: its renderer (which accumulates) and pass size. */
+interface Progressive {
   renderer: PassRenderer;
-  accumulator: ImageAccumulator;
   perPass: number;
   /** Sum of the passes' measured times (ms). */
   elapsedMs: number;
@@ -105,7 +110,10 @@ interface Accumulation {
 interface Snapshot {
   samples: number;
   elapsedMs: number;
-  mean: Float64Array;
+  /** A frozen copy of the moments (a GPU buffer copy on WebGPU). */
+  image: Accumulation;
+  /** RMSE against the reference, and the reference's sample count it was measured at. */
+  error: { rmse: number; referenceSamples: number } | null;
 }
 
 /**
@@ -125,11 +133,9 @@ interface KernelTimes {
 }
 
 /** Mean over pixels and channels of the variance of one sample, s² = n·SE². */
-function meanSampleVariance(accumulator: ImageAccumulator): number {
-  const errors = accumulator.standardError();
-  let sum = 0;
-  for (const e of errors) sum += e * e * accumulator.samples;
-  return sum / Math.max(errors.length, 1);
+async function meanSampleVariance(accumulation: Accumulation): Promise<number> {
+  const stats = await accumulation.statistics();
+  return stats.rmsStandardError ** 2 * stats.samples;
 }
 
 interface Run {
@@ -138,7 +144,7 @@ interface Run {
   width: number;
   height: number;
   plan: Plan;
-  main: Accumulation;
+  main: Progressive;
   snapshots: Snapshot[];
   nextSnapshot: number;
   lastFrameMs: number;
@@ -182,7 +188,10 @@ export class SingleScatterElement extends WidgetElement {
   private run: Run | null = null;
   private generation = 0;
   /** References per backend and scene: their accumulations go on as the target grows. */
-  private readonly references = new Map<string, Accumulation>();
+  private readonly references = new Map<string, Progressive>();
+  /** The WebGPU pictures of the two canvases, made for one device. */
+  private views: { device: GPUDevice; image: AccumulationView; error: AccumulationView } | null =
+    null;
   private readonly kernelTimes = new Map<string, KernelTimes>();
   private remeasure = false;
   private readonly resolvedCache = new Map<string, Promise<ResolvedScene>>();
@@ -285,10 +294,14 @@ export class SingleScatterElement extends WidgetElement {
     for (const reference of this.references.values()) reference.renderer.destroy();
     this.references.clear();
     this.kernelTimes.clear();
+    this.views?.image.destroy();
+    this.views?.error.destroy();
+    this.views = null;
   }
 
   private disposeRun(): void {
     this.run?.main.renderer.destroy();
+    for (const snapshot of this.run?.snapshots ?? []) snapshot.image.destroy();
     this.run = null;
     this.generation++;
   }
@@ -332,16 +345,11 @@ export class SingleScatterElement extends WidgetElement {
   }
 
   /** One pass of an accumulation, sized to the frame budget from the last pass's cost. */
-  private async step(
-    accumulation: Accumulation,
-    target: number,
-    budgetMs: number,
-  ): Promise<number> {
-    const { accumulator } = accumulation;
-    const samples = Math.min(accumulation.perPass, target - accumulator.samples);
+  private async step(accumulation: Progressive, target: number, budgetMs: number): Promise<number> {
+    const have = accumulation.renderer.accumulation.samples;
+    const samples = Math.min(accumulation.perPass, target - have);
     if (samples <= 0) return 0;
-    const output = await accumulation.renderer.renderPass(accumulator.samples, samples);
-    accumulator.addPass(output.floats, output.words, samples);
+    const output = await accumulation.renderer.renderPass(have, samples);
     accumulation.elapsedMs += output.milliseconds;
     accumulation.timing = output.timing ?? accumulation.renderer.timing;
     const perSample = output.milliseconds / samples;
@@ -398,7 +406,6 @@ export class SingleScatterElement extends WidgetElement {
         plan: scenePlan,
         main: {
           renderer,
-          accumulator: new ImageAccumulator(width, height),
           perPass: 1,
           elapsedMs: 0,
           timing: renderer.timing,
@@ -420,16 +427,17 @@ export class SingleScatterElement extends WidgetElement {
     let busy = false;
 
     // 1. The progressive image: one pass sized to the frame budget.
-    if (run.main.accumulator.samples < target) {
+    if (run.main.renderer.accumulation.samples < target) {
       run.lastFrameMs = await this.step(run.main, target, budget);
       if (generation !== this.generation) return;
       this.recordFrameCost(run.lastFrameMs, timingLabel(run.main.timing));
-      const samples = run.main.accumulator.samples;
+      const samples = run.main.renderer.accumulation.samples;
       if (samples >= run.nextSnapshot || samples >= target) {
         run.snapshots.push({
           samples,
           elapsedMs: run.main.elapsedMs,
-          mean: run.main.accumulator.mean(),
+          image: run.main.renderer.accumulation.snapshot(),
+          error: null,
         });
         while (run.nextSnapshot <= samples) run.nextSnapshot *= 2;
       }
@@ -449,19 +457,18 @@ export class SingleScatterElement extends WidgetElement {
       }
       reference = {
         renderer,
-        accumulator: new ImageAccumulator(width, height),
         perPass: 1,
         elapsedMs: 0,
         timing: renderer.timing,
       };
       this.references.set(key, reference);
     }
-    if (reference.accumulator.samples < referenceTarget) {
+    if (reference.renderer.accumulation.samples < referenceTarget) {
       await this.step(reference, referenceTarget, busy ? budget : 2 * budget);
       if (generation !== this.generation) return;
       busy = true;
     }
-    const referenceDone = reference.accumulator.samples >= referenceTarget;
+    const referenceDone = reference.renderer.accumulation.samples >= referenceTarget;
 
     // 3. Specialized against general kernel, once per scene (or on request), after the reference.
     if (referenceDone && (this.remeasure || !this.kernelTimes.has(key))) {
@@ -472,7 +479,8 @@ export class SingleScatterElement extends WidgetElement {
       this.kernelTimes.set(key, times);
     }
 
-    this.show(run, reference, target, referenceTarget, this.kernelTimes.get(key) ?? null);
+    await this.show(run, reference, target, referenceTarget, this.kernelTimes.get(key) ?? null);
+    if (generation !== this.generation) return;
     if (busy) this.scheduleRender();
   }
 
@@ -493,32 +501,28 @@ export class SingleScatterElement extends WidgetElement {
       backend.kind === 'gpu' ? Math.max(TIMING_SAMPLES, this.run?.main.perPass ?? 1) : 2;
     const planTimes: number[] = [];
     const generalTimes: number[] = [];
-    const planImage = new ImageAccumulator(width, height);
-    const generalImage = new ImageAccumulator(width, height);
     let timing: PassTiming = specialized.timing;
     try {
       for (let i = 0; i < TIMING_REPEATS; i++) {
         // Different samples in each repeat, the same ones for both kernels.
         const a = await specialized.renderPass(i * samples, samples);
         const b = await general.renderPass(i * samples, samples);
-        planImage.addPass(a.floats, a.words, samples);
-        generalImage.addPass(b.floats, b.words, samples);
         planTimes.push(a.milliseconds / samples);
         generalTimes.push(b.milliseconds / samples);
         timing = a.timing ?? specialized.timing;
       }
+      return {
+        planMs: median(planTimes),
+        generalMs: median(generalTimes),
+        planVariance: await meanSampleVariance(specialized.accumulation),
+        generalVariance: await meanSampleVariance(general.accumulation),
+        timing,
+        samples,
+      };
     } finally {
       specialized.destroy();
       general.destroy();
     }
-    return {
-      planMs: median(planTimes),
-      generalMs: median(generalTimes),
-      planVariance: meanSampleVariance(planImage),
-      generalVariance: meanSampleVariance(generalImage),
-      timing,
-      samples,
-    };
   }
 
   private showPlan(scenePlan: Plan): void {
@@ -542,51 +546,89 @@ export class SingleScatterElement extends WidgetElement {
       this.planCaption.textContent = `The plan: ${scenePlan.integrator}, ${compiled} of ${scenePlan.effects.length} effects compiled`;
   }
 
-  private show(
+  /**
+   * Draws the radiance and the per-pixel standard error: on WebGPU straight from the
+   * moments on the GPU (render passes, no read-back); for the CPU twin, on the host.
+   */
+  private async paint(run: Run, scale: number): Promise<void> {
+    const accumulation = run.main.renderer.accumulation;
+    const radiance: AccumulationPicture = { kind: 'radiance', exposure: DISPLAY_EXPOSURE };
+    const error: AccumulationPicture = { kind: 'standard-error', scale };
+    if (!this.imageCanvas || !this.errorCanvas) return;
+    if (accumulation instanceof GpuAccumulation) {
+      this.imageCanvas = canvasForContext(this.imageCanvas, 'webgpu');
+      this.errorCanvas = canvasForContext(this.errorCanvas, 'webgpu');
+      const { device } = accumulation;
+      if (this.views?.device !== device) {
+        this.views?.image.destroy();
+        this.views?.error.destroy();
+        this.views = {
+          device,
+          image: await AccumulationView.create(device, STATIC_KERNELS, this.imageCanvas),
+          error: await AccumulationView.create(device, STATIC_KERNELS, this.errorCanvas),
+        };
+      }
+      await this.views.image.draw(accumulation, radiance);
+      await this.views.error.draw(accumulation, error);
+      return;
+    }
+    this.imageCanvas = canvasForContext(this.imageCanvas, '2d');
+    this.errorCanvas = canvasForContext(this.errorCanvas, '2d');
+    const { width, height } = run;
+    const image: ImageAccumulator = await accumulation.readImage();
+    const rgba = toneMapRgba8(width, height, image.mean(), DISPLAY_EXPOSURE);
+    this.imageCanvas
+      .getContext('2d')
+      ?.putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
+    // Standard error per pixel: the mean over the three channels, on a rounded scale.
+    const standardError = image.standardError();
+    const errorImage = new ImageData(width, height);
+    for (let i = 0; i < width * height; i++) {
+      const e = (standardError[3 * i]! + standardError[3 * i + 1]! + standardError[3 * i + 2]!) / 3;
+      const [r, g, b] = errorColour((Number.isFinite(e) ? e : 0) / scale);
+      errorImage.data.set([r, g, b, 255], 4 * i);
+    }
+    this.errorCanvas.getContext('2d')?.putImageData(errorImage, 0, 0);
+  }
+
+  private async show(
     run: Run,
-    reference: Accumulation,
+    reference: Progressive,
     target: number,
     referenceTarget: number,
     times: KernelTimes | null,
-  ): void {
-    const { accumulator } = run.main;
-    const mean = accumulator.mean();
-    const standardError = accumulator.standardError();
-    const { width, height } = run;
-    if (this.imageCanvas) {
-      const rgba = toneMapRgba8(width, height, mean, DISPLAY_EXPOSURE);
-      this.imageCanvas
-        .getContext('2d')
-        ?.putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
-    }
-    // Standard error per pixel: the mean over the three channels, on a rounded scale.
-    const perPixel = new Float64Array(width * height);
-    let largest = 0;
-    for (let i = 0; i < perPixel.length; i++) {
-      const e = (standardError[3 * i]! + standardError[3 * i + 1]! + standardError[3 * i + 2]!) / 3;
-      perPixel[i] = Number.isFinite(e) ? e : 0;
-      largest = Math.max(largest, perPixel[i]!);
-    }
+  ): Promise<void> {
+    const accumulation = run.main.renderer.accumulation;
+    const referenceAccumulation = reference.renderer.accumulation;
+    const referenceSamples = referenceAccumulation.samples;
+    const referenceDone = referenceSamples >= referenceTarget;
+    const generation = this.generation;
+    // One reduction: the readouts' numbers, and the RMSE against the finished reference.
+    const stats = await accumulation.statistics(referenceDone ? referenceAccumulation : undefined);
+    if (generation !== this.generation) return;
+    // The error map's top colour: the largest channel-averaged standard error, rounded.
+    const largest = stats.maxPixelStandardError;
     const scale = largest > 0 ? niceScale(largest) : 1;
-    if (this.errorCanvas) {
-      const image = new ImageData(width, height);
-      for (let i = 0; i < perPixel.length; i++) {
-        const [r, g, b] = errorColour(perPixel[i]! / scale);
-        image.data.set([r, g, b, 255], 4 * i);
-      }
-      this.errorCanvas.getContext('2d')?.putImageData(image, 0, 0);
-    }
+    await this.paint(run, scale);
+    if (generation !== this.generation) return;
     if (this.errorScale) this.errorScale.textContent = formatNumber(scale, 2);
+    // Each snapshot against the reference once (again only if the reference grew).
+    if (referenceDone)
+      for (const snapshot of run.snapshots) {
+        if (snapshot.error?.referenceSamples === referenceSamples) continue;
+        const against = await snapshot.image.statistics(referenceAccumulation);
+        if (generation !== this.generation) return;
+        snapshot.error = { rmse: against.rmse, referenceSamples };
+      }
 
-    const samples = accumulator.samples;
+    const { width, height } = run;
+    const samples = accumulation.samples;
     this.set('spp', `${samples} of ${target}`, samples >= target ? 'ok' : undefined);
     // One sample has no sample variance (the accumulator returns NaN): say so.
     this.set(
       'std-error',
-      samples < 2 ? 'needs ≥ 2 samples' : formatNumber(rmsStandardError(standardError), 3),
+      samples < 2 ? 'needs ≥ 2 samples' : formatNumber(stats.rmsStandardError, 3),
     );
-    const referenceSamples = reference.accumulator.samples;
-    const referenceDone = referenceSamples >= referenceTarget;
     this.dataset['referenceDone'] = String(referenceDone);
     if (this.progress) {
       this.progress.max = referenceTarget;
@@ -599,10 +641,9 @@ export class SingleScatterElement extends WidgetElement {
         : `computing: ${referenceSamples} of ${referenceTarget} spp`,
     );
 
-    const referenceMean = referenceDone ? reference.accumulator.mean() : null;
-    const errors = referenceMean ? run.snapshots.map((s) => rmse(s.mean, referenceMean)) : [];
-    if (referenceMean) {
-      const current = rmse(mean, referenceMean);
+    const errors = referenceDone ? run.snapshots.map((s) => s.error?.rmse ?? NaN) : [];
+    if (referenceDone) {
+      const current = stats.rmse;
       this.set('error', formatNumber(current, 3));
       this.dataset['error'] = String(current);
     } else {
@@ -612,10 +653,10 @@ export class SingleScatterElement extends WidgetElement {
     this.dataset['spp'] = String(samples);
     const fitted = run.snapshots.filter((s) => s.samples >= 4);
     const slope =
-      referenceMean && fitted.length >= 3
+      referenceDone && fitted.length >= 3
         ? logLogSlope(
             fitted.map((s) => s.samples),
-            fitted.map((s) => rmse(s.mean, referenceMean)),
+            fitted.map((s) => s.error?.rmse ?? NaN),
           )
         : null;
     this.set(

@@ -6,12 +6,16 @@
 // (independent seed, many more samples) is accumulated one pass per frame, cached per
 // parameter set, with progress and a cancel button; once it is there, the error of
 // every snapshot of the progressive images is plotted against accumulated GPU time on
-// log–log axes, where an unbiased estimator falls with slope −½. Without WebGPU the
-// float64 CPU twin renders a smaller image with fewer samples, and says so.
+// log–log axes, where an unbiased estimator falls with slope −½. On WebGPU the images
+// accumulate on the GPU and are drawn from there (src/scene/accumulationView.ts); a
+// frame reads back only reduced statistics. Without WebGPU the float64 CPU twin renders
+// a smaller image with fewer samples, and says so.
 import type { GpuContext } from '../../gpu/device.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
-import { ImageAccumulator } from '../../scene/accumulation.ts';
+import type { Accumulation, ImageStatistics } from '../../scene/accumulation.ts';
+import { AccumulationView, canvasForContext } from '../../scene/accumulationView.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
+import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene } from '../../scene/load.ts';
@@ -20,7 +24,7 @@ import { plan, type Plan } from '../../scene/plan.ts';
 import type { PassRenderer, PassTiming } from '../../scene/render.ts';
 import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { timingLabel } from '../base/imageKernel.ts';
+import { timingLabel } from '../base/timing.ts';
 import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { LinePlot } from '../base/plot.ts';
 import { ReadoutList } from '../base/readoutList.ts';
@@ -33,11 +37,7 @@ import {
   REFERENCE_SEED,
   buildScene,
   inputsFrom,
-  maskedLuminance,
-  meanRadiance,
-  meanStandardError,
   mediumMask,
-  relativeError,
   sceneKey,
   type Budget,
   type PathTracerInputs,
@@ -61,28 +61,32 @@ const READOUT_ROWS = [
 const ORDERS = ['single', 'multiple'] as const;
 type Order = (typeof ORDERS)[number];
 
-/** One image being refined: its renderer, sums, cost so far and error snapshots. */
+/** A frozen copy of an image, and its error once the reference is there. */
+interface Snapshot {
+  samples: number;
+  milliseconds: number;
+  image: Accumulation | null;
+  /** Relative error against the finished reference (NaN: within its noise). */
+  error: number | null;
+}
+
+/** One image being refined: its renderer (which accumulates), cost so far and snapshots. */
 interface Progressive {
   renderer: PassRenderer;
-  accumulator: ImageAccumulator;
+  accumulation: Accumulation;
   milliseconds: number;
   timing: PassTiming;
   lastPassMs: number;
-  /** Mean images at geometrically spaced spp, for the error plot once the reference exists. */
-  snapshots: { samples: number; milliseconds: number; mean: Float64Array }[];
-}
-
-interface Reference {
-  mean: Float64Array;
-  standardError: Float64Array;
-  samples: number;
+  /** Copies at geometrically spaced spp, for the error plot once the reference exists. */
+  snapshots: Snapshot[];
 }
 
 /** The reference of one parameter set, complete or in progress. */
 interface ReferenceJob {
+  /** Null once done: the renderers are freed and only the accumulations kept. */
   renderers: Record<Order, PassRenderer> | null;
-  accumulators: Record<Order, ImageAccumulator>;
-  done: Record<Order, Reference> | null;
+  accumulations: Record<Order, Accumulation>;
+  done: boolean;
   cancelled: boolean;
   /** Samples per pixel of the next reference pass, sized to REFERENCE_FRAME_MS. */
   passSpp: number;
@@ -114,14 +118,25 @@ export class VolumePathTracerElement extends WidgetElement {
   protected override presets: readonly Preset[] = [
     {
       label: 'white cloud (α = 0.99)',
-      values: { scene: 'sphere', albedo: 0.99, g: 0.8, density: 10 },
+      values: { scene: 'sphere', albedo: 0.99, g: 0.8, 'optical-thickness': 10 },
     },
-    { label: 'dark smoke (α = 0.3)', values: { scene: 'sphere', albedo: 0.3, g: 0.3, density: 8 } },
-    { label: 'thin haze (τ = 1)', values: { scene: 'sphere', albedo: 0.9, g: 0.6, density: 1 } },
-    { label: 'puffy grid cloud', values: { scene: 'cloud', albedo: 0.98, g: 0.7, density: 16 } },
+    {
+      label: 'dark smoke (α = 0.3)',
+      values: { scene: 'sphere', albedo: 0.3, g: 0.3, 'optical-thickness': 8 },
+    },
+    {
+      label: 'thin haze (τ = 1)',
+      values: { scene: 'sphere', albedo: 0.9, g: 0.6, 'optical-thickness': 1 },
+    },
+    {
+      label: 'puffy grid cloud',
+      values: { scene: 'cloud', albedo: 0.98, g: 0.7, 'optical-thickness': 16 },
+    },
   ];
 
   private canvases: Partial<Record<Order, HTMLCanvasElement>> = {};
+  /** The WebGPU pictures of the canvases, made for one device. */
+  private views: Partial<Record<Order, { device: GPUDevice; view: AccumulationView }>> = {};
   private captions: Partial<Record<Order, HTMLElement>> = {};
   private readouts: ReadoutList | null = null;
   private cost: HTMLElement | null = null;
@@ -139,10 +154,17 @@ export class VolumePathTracerElement extends WidgetElement {
     (gpu: GpuContext) => gpu,
     () => {
       this.discardRun();
+      for (const job of this.references.values()) destroyReference(job);
       this.references.clear();
+      this.dropViews();
       this.scheduleRender();
     },
   );
+
+  private dropViews(): void {
+    for (const order of ORDERS) this.views[order]?.view.destroy();
+    this.views = {};
+  }
 
   protected buildStage(stage: HTMLElement): void {
     const panels = ORDERS.map((order) => {
@@ -245,7 +267,11 @@ export class VolumePathTracerElement extends WidgetElement {
 
   private discardRun(): void {
     if (!this.run) return;
-    for (const order of ORDERS) this.run.images[order].renderer.destroy();
+    for (const order of ORDERS) {
+      const image = this.run.images[order];
+      image.renderer.destroy();
+      for (const snapshot of image.snapshots) snapshot.image?.destroy();
+    }
     // The reference job stays in the cache (with its renderers) only while unfinished
     // work of it may resume; a finished one keeps just its images.
     this.run = null;
@@ -320,20 +346,23 @@ export class VolumePathTracerElement extends WidgetElement {
         );
         reference = {
           renderers: { single: refSingle.renderer, multiple: refMultiple.renderer },
-          accumulators: {
-            single: new ImageAccumulator(budget.width, budget.height),
-            multiple: new ImageAccumulator(budget.width, budget.height),
+          accumulations: {
+            single: refSingle.renderer.accumulation,
+            multiple: refMultiple.renderer.accumulation,
           },
-          done: null,
+          done: false,
           cancelled: false,
           passSpp: 1,
         };
         this.references.set(key, reference);
         this.trimReferences();
       }
+      const mask = mediumMask(inputs, budget.width, budget.height);
+      single.renderer.accumulation.setMask(mask);
+      multiple.renderer.accumulation.setMask(mask);
       const progressive = (renderer: PassRenderer): Progressive => ({
         renderer,
-        accumulator: new ImageAccumulator(budget.width, budget.height),
+        accumulation: renderer.accumulation,
         milliseconds: 0,
         timing: renderer.timing,
         lastPassMs: 0,
@@ -353,7 +382,7 @@ export class VolumePathTracerElement extends WidgetElement {
         backend: backend.kind,
         images: { single: progressive(single.renderer), multiple: progressive(multiple.renderer) },
         plans: { single: single.plan, multiple: multiple.plan },
-        mask: mediumMask(inputs, budget.width, budget.height),
+        mask,
         reference,
       };
     } catch (error) {
@@ -366,7 +395,7 @@ export class VolumePathTracerElement extends WidgetElement {
   private trimReferences(): void {
     while (this.references.size > MAX_CACHED_REFERENCES) {
       const [oldest, job] = this.references.entries().next().value!;
-      if (job.renderers) for (const order of ORDERS) job.renderers[order].destroy();
+      destroyReference(job);
       this.references.delete(oldest);
     }
   }
@@ -396,14 +425,15 @@ export class VolumePathTracerElement extends WidgetElement {
         `Showing the float64 CPU twin of the same path tracer: ${CPU_BUDGET.width}×${CPU_BUDGET.height} pixels, at most ${CPU_BUDGET.maxSpp} samples per pixel and ${CPU_BUDGET.maxFrameSpp} per frame, reference ${CPU_BUDGET.referenceSpp}.`,
       );
     }
-    this.show(this.run);
-    if (!this.paused && this.hasWork(this.run)) this.scheduleRender();
+    const run = this.run;
+    await this.show(run);
+    if (this.run === run && !this.paused && this.hasWork(run)) this.scheduleRender();
   }
 
   private hasWork(run: Run): boolean {
     const job = run.reference;
     return (
-      run.images.multiple.accumulator.samples < run.budget.maxSpp || (!job.done && !job.cancelled)
+      run.images.multiple.accumulation.samples < run.budget.maxSpp || (!job.done && !job.cancelled)
     );
   }
 
@@ -415,25 +445,26 @@ export class VolumePathTracerElement extends WidgetElement {
     let timing: PassTiming | null = null;
     for (const order of ORDERS) {
       const image = run.images[order];
-      const have = image.accumulator.samples;
+      const have = image.accumulation.samples;
       const samples = Math.min(sppPerFrame, budget.maxFrameSpp, budget.maxSpp - have);
       if (samples <= 0) continue;
       const output = await image.renderer.renderPass(have, samples);
       if (this.run !== run) return;
-      image.accumulator.addPass(output.floats, output.words, samples);
       image.milliseconds += output.milliseconds;
       image.lastPassMs = output.milliseconds;
       image.timing = output.timing ?? image.renderer.timing;
       timing = image.timing;
       frameMs += output.milliseconds;
-      // Snapshots at spp growing by ≥ 25 %: even spacing on the log–log plot.
+      // Snapshots at spp growing by ≥ 25 %: even spacing on the log–log plot. A copy
+      // of the moments in the same store (a GPU buffer copy, nothing read back).
       const last = image.snapshots.at(-1);
-      const total = image.accumulator.samples;
+      const total = image.accumulation.samples;
       if (!last || total >= last.samples * 1.25 || total === budget.maxSpp)
         image.snapshots.push({
           samples: total,
           milliseconds: image.milliseconds,
-          mean: image.accumulator.mean(),
+          image: image.accumulation.snapshot(),
+          error: null,
         });
     }
     if (timing) this.recordFrameCost(frameMs, timingLabel(timing));
@@ -447,12 +478,11 @@ export class VolumePathTracerElement extends WidgetElement {
     let spent = 0;
     let rendered = 0;
     for (const order of ORDERS) {
-      const accumulator = job.accumulators[order];
+      const accumulation = job.accumulations[order];
       const passSpp = Math.min(job.passSpp, budget.referencePass);
-      const samples = Math.min(passSpp, budget.referenceSpp - accumulator.samples);
+      const samples = Math.min(passSpp, budget.referenceSpp - accumulation.samples);
       if (samples <= 0) continue;
-      const output = await job.renderers[order].renderPass(accumulator.samples, samples);
-      accumulator.addPass(output.floats, output.words, samples);
+      const output = await job.renderers[order].renderPass(accumulation.samples, samples);
       spent += output.milliseconds;
       rendered += samples;
     }
@@ -466,14 +496,14 @@ export class VolumePathTracerElement extends WidgetElement {
         ),
       );
     }
-    if (ORDERS.every((order) => job.accumulators[order].samples >= budget.referenceSpp)) {
-      const finished = (order: Order): Reference => ({
-        mean: job.accumulators[order].mean(),
-        standardError: job.accumulators[order].standardError(),
-        samples: job.accumulators[order].samples,
-      });
-      job.done = { single: finished('single'), multiple: finished('multiple') };
-      for (const order of ORDERS) job.renderers[order].destroy();
+    if (ORDERS.every((order) => job.accumulations[order].samples >= budget.referenceSpp)) {
+      // Keep the moments (on the GPU for a GPU run), free the scene and its kernels.
+      const renderers = job.renderers;
+      job.accumulations = {
+        single: renderers.single.release(),
+        multiple: renderers.multiple.release(),
+      };
+      job.done = true;
       job.renderers = null;
     }
   }
@@ -483,10 +513,10 @@ export class VolumePathTracerElement extends WidgetElement {
     if (!run || !this.referenceStatus || !this.referenceProgress || !this.referenceButton) return;
     const job = run.reference;
     const target = run.budget.referenceSpp;
-    const have = Math.min(job.accumulators.single.samples, job.accumulators.multiple.samples);
+    const have = Math.min(job.accumulations.single.samples, job.accumulations.multiple.samples);
     this.referenceProgress.max = target;
     this.referenceProgress.value = job.done ? target : have;
-    this.referenceButton.disabled = job.done !== null;
+    this.referenceButton.disabled = job.done;
     this.referenceButton.textContent = job.cancelled ? 'Compute reference' : 'Cancel reference';
     this.referenceStatus.textContent = job.done
       ? `Reference ready: ${target} spp per pixel per image (independent seed), cached for these parameters.`
@@ -495,28 +525,51 @@ export class VolumePathTracerElement extends WidgetElement {
         : `Computing the reference: ${have} of ${target} spp per pixel…`;
   }
 
-  private paint(order: Order, run: Run, mean: Float64Array): void {
-    const canvas = this.canvases[order];
-    const context = canvas?.getContext('2d');
-    if (!canvas || !context) return;
+  /**
+   * Draws an image: on WebGPU straight from its moments on the GPU (a render pass, no
+   * read-back); for the CPU twin, its float64 mean tone-mapped on the host.
+   */
+  private async paint(order: Order, run: Run, accumulation: Accumulation): Promise<void> {
+    const current = this.canvases[order];
+    if (!current) return;
+    if (accumulation instanceof GpuAccumulation) {
+      const canvas = canvasForContext(current, 'webgpu');
+      this.canvases[order] = canvas;
+      const { device } = accumulation;
+      let entry = this.views[order];
+      if (!entry || entry.device !== device) {
+        entry?.view.destroy();
+        entry = { device, view: await AccumulationView.create(device, STATIC_KERNELS, canvas) };
+        this.views[order] = entry;
+      }
+      await entry.view.draw(accumulation, { kind: 'radiance', exposure: 0 });
+      return;
+    }
+    const canvas = canvasForContext(current, '2d');
+    this.canvases[order] = canvas;
+    const context = canvas.getContext('2d');
+    if (!context) return;
     const { width, height } = run.budget;
+    const mean = (await accumulation.readImage()).mean();
     const rgba = toneMapRgba8(width, height, mean, 0);
     context.putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
   }
 
-  private show(run: Run): void {
+  private async show(run: Run): Promise<void> {
     const { budget, images, reference } = run;
-    const means = {
-      single: images.single.accumulator.mean(),
-      multiple: images.multiple.accumulator.mean(),
+    const stats: Record<Order, ImageStatistics> = {
+      single: await images.single.accumulation.statistics(),
+      multiple: await images.multiple.accumulation.statistics(),
     };
-    const spp = images.multiple.accumulator.samples;
+    if (this.run !== run) return;
+    const spp = images.multiple.accumulation.samples;
     const pixelPaths = budget.width * budget.height;
     for (const order of ORDERS) {
       const image = images[order];
-      this.paint(order, run, means[order]);
-      const error = meanStandardError(image.accumulator.standardError());
-      const relative = error / meanRadiance(means[order]);
+      await this.paint(order, run, image.accumulation);
+      if (this.run !== run) return;
+      const error = stats[order].meanStandardError;
+      const relative = error / stats[order].meanRadiance;
       this.set(
         `stderr-${order}`,
         Number.isFinite(error)
@@ -525,18 +578,18 @@ export class VolumePathTracerElement extends WidgetElement {
       );
       const caption = this.captions[order];
       if (caption)
-        caption.textContent = `${order === 'single' ? 'Single scattering (order 1)' : 'Multiple scattering (all orders)'}: ${image.accumulator.samples} spp`;
+        caption.textContent = `${order === 'single' ? 'Single scattering (order 1)' : 'Multiple scattering (all orders)'}: ${image.accumulation.samples} spp`;
       this.canvases[order]?.setAttribute(
         'aria-label',
-        `${order === 'single' ? 'Single' : 'Multiple'} scattering image, ${image.accumulator.samples} samples per pixel`,
+        `${order === 'single' ? 'Single' : 'Multiple'} scattering image, ${image.accumulation.samples} samples per pixel`,
       );
     }
     this.set(
       'spp',
       `${spp} of ${budget.maxSpp}${spp >= budget.maxSpp ? ' (done)' : this.paused ? ' (paused)' : ''}`,
     );
-    const single = maskedLuminance(means.single, run.mask);
-    const multiple = maskedLuminance(means.multiple, run.mask);
+    const single = stats.single.maskedLuminance;
+    const multiple = stats.multiple.maskedLuminance;
     this.set(
       'ratio',
       single > 0
@@ -554,18 +607,14 @@ export class VolumePathTracerElement extends WidgetElement {
       Number.isFinite(perSample) ? `${formatNumber(perSample, 3)} ns per path` : '—',
     );
     const lookups = (order: Order): string =>
-      formatNumber(
-        images[order].accumulator.lookups /
-          Math.max(1, images[order].accumulator.samples * pixelPaths),
-        3,
-      );
+      formatNumber(stats[order].lookups / Math.max(1, stats[order].samples * pixelPaths), 3);
     this.set(
       'lookups',
       run.inputs.scene === 'cloud'
         ? `single ${lookups('single')}, multiple ${lookups('multiple')}`
         : 'none counted (homogeneous medium, no grid)',
     );
-    const capped = images.single.accumulator.capped + multi.accumulator.capped;
+    const capped = stats.single.capped + stats.multiple.capped;
     this.set('capped', String(capped), capped > 0 ? 'bad' : 'ok');
     if (capped > 0)
       this.showNotice(
@@ -575,7 +624,8 @@ export class VolumePathTracerElement extends WidgetElement {
       );
     else this.clearNotice('capped');
 
-    this.showErrors(run);
+    await this.showErrors(run);
+    if (this.run !== run) return;
     this.updateReferenceStatus();
     this.showPlan(run);
     if (this.cost) {
@@ -587,9 +637,9 @@ export class VolumePathTracerElement extends WidgetElement {
     }
   }
 
-  private showErrors(run: Run): void {
-    const done = run.reference.done;
-    if (!done) {
+  private async showErrors(run: Run): Promise<void> {
+    const job = run.reference;
+    if (!job.done) {
       for (const order of ORDERS)
         this.set(
           `error-${order}`,
@@ -602,7 +652,17 @@ export class VolumePathTracerElement extends WidgetElement {
     for (const order of ORDERS) {
       const image = run.images[order];
       for (const snapshot of image.snapshots) {
-        const error = relativeError(snapshot.mean, done[order].mean, done[order].standardError);
+        // Once per snapshot: against the finished reference (one reduction on the GPU),
+        // after which the copy is no longer needed.
+        if (snapshot.error === null && snapshot.image) {
+          snapshot.error = (
+            await snapshot.image.statistics(job.accumulations[order])
+          ).relativeError;
+          snapshot.image.destroy();
+          snapshot.image = null;
+          if (this.run !== run) return;
+        }
+        const error = snapshot.error ?? NaN;
         if (Number.isFinite(error))
           points[order].push({
             n: snapshot.samples,
@@ -687,6 +747,12 @@ export class VolumePathTracerElement extends WidgetElement {
       list.append(term, value);
     }
   }
+}
+
+/** Frees a cached reference: its renderers while unfinished, else its moments. */
+function destroyReference(job: ReferenceJob): void {
+  if (job.renderers) for (const order of ORDERS) job.renderers[order].destroy();
+  else for (const order of ORDERS) job.accumulations[order].destroy();
 }
 
 export function defineVolumePathTracer(): void {
