@@ -5,10 +5,10 @@
 // history and, now and then, the rendered views are read back. The same class runs
 // in the browser and, through Dawn, in the tests.
 import type { Camera } from '../../reference/camera.ts';
+import { gpuCore, mapRange } from '../../gpu/core.ts';
 import { withErrorScopes } from '../../gpu/errors.ts';
 import { packStruct, wordsOf, writeStruct } from '../../gpu/layout.ts';
 import { inverseRenderKernel } from '../../gpu/layouts.generated.ts';
-import { GpuTimer } from '../../gpu/timing.ts';
 import {
   BACKGROUND,
   MAX_ITERATIONS,
@@ -93,23 +93,22 @@ export class InverseTrainerGpu implements Trainer {
     this.stats = make(4 * (STATS_LOSS_OFFSET + MAX_ITERATIONS));
     this.image = make(12 * this.allPixels);
 
-    const layout = device.createBindGroupLayout({
-      entries: [
-        { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
-        ...[1, 2, 3, 4, 6, 7].map((binding) => ({
-          binding,
-          visibility: GPUShaderStage.COMPUTE,
-          buffer: { type: 'storage' as const },
-        })),
-        { binding: 5, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'read-only-storage' } },
-      ],
-    });
-    const module = device.createShaderModule({ code });
-    const pipelineLayout = device.createPipelineLayout({ bindGroupLayouts: [layout] });
+    // Layouts and pipelines from the GPU core (a second trainer of the same code reuses them).
+    const core = gpuCore(device);
+    const layout = core.bindGroupLayout([
+      { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
+      ...[1, 2, 3, 4, 6, 7].map((binding) => ({
+        binding,
+        visibility: GPUShaderStage.COMPUTE,
+        buffer: { type: 'storage' as const },
+      })),
+      { binding: 5, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'read-only-storage' } },
+    ]);
+    const pipelineLayout = core.pipelineLayout([layout]);
     for (const entryPoint of ENTRY_POINTS)
       this.pipelines.set(
         entryPoint,
-        device.createComputePipeline({ layout: pipelineLayout, compute: { module, entryPoint } }),
+        core.computePipeline({ code, entryPoint, layout: pipelineLayout }),
       );
     this.bindGroup = device.createBindGroup({
       layout,
@@ -197,12 +196,14 @@ export class InverseTrainerGpu implements Trainer {
   async train(count: number, hyper: Hyper): Promise<TrainReport> {
     const iterations = Math.max(0, Math.min(count, MAX_ITERATIONS - this.iteration));
     const first = this.iteration;
-    const timer = new GpuTimer(this.device);
+    const lease = gpuCore(this.device).lease();
+    const timer = lease.timer();
     const readBytes = 4 * (STATS_LOSS_OFFSET + Math.max(iterations, 1) + first);
-    const readBack = this.device.createBuffer({
-      size: readBytes,
-      usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
-    });
+    const readBack = lease.buffer(
+      'inverse-render.read',
+      readBytes,
+      GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
+    );
     // Wall time from before the submit: popping the error scopes may already wait for the GPU.
     const start = performance.now();
     try {
@@ -222,40 +223,27 @@ export class InverseTrainerGpu implements Trainer {
         encoder.copyBufferToBuffer(this.stats, 0, readBack, 0, readBytes);
         this.device.queue.submit([encoder.finish()]);
       });
-      await readBack.mapAsync(GPUMapMode.READ);
+      const words = new Uint32Array(await mapRange(readBack, readBytes));
       const wallMs = performance.now() - start;
-      const words = new Uint32Array(readBack.getMappedRange().slice(0));
-      readBack.unmap();
       const losses = new Float32Array(words.buffer, 4 * (STATS_LOSS_OFFSET + first), iterations);
       this.iteration = words[0]!;
+      const gpuMs = await timer.read();
+      lease.release();
       return {
         losses: losses.slice(),
         iteration: this.iteration,
         dropped: words[1]!,
-        gpuMs: await timer.read(),
+        gpuMs,
         wallMs,
       };
-    } finally {
-      timer.destroy();
-      readBack.destroy();
+    } catch (error) {
+      lease.discard();
+      throw error;
     }
   }
 
-  private async read(source: GPUBuffer, bytes: number): Promise<ArrayBuffer> {
-    const readBack = this.device.createBuffer({
-      size: bytes,
-      usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
-    });
-    try {
-      const encoder = this.device.createCommandEncoder();
-      encoder.copyBufferToBuffer(source, 0, readBack, 0, bytes);
-      this.device.queue.submit([encoder.finish()]);
-      await readBack.mapAsync(GPUMapMode.READ);
-      return readBack.getMappedRange().slice(0);
-    } finally {
-      if (readBack.mapState === 'mapped') readBack.unmap();
-      readBack.destroy();
-    }
+  private read(source: GPUBuffer, bytes: number): Promise<ArrayBuffer> {
+    return gpuCore(this.device).read(source, bytes);
   }
 
   /** The target images of every view (3 floats per pixel, views in order). */
@@ -265,19 +253,19 @@ export class InverseTrainerGpu implements Trainer {
 
   /** Renders the current grid from every view (training, then held-out) and reads it back. */
   async render(): Promise<{ image: Float32Array; gpuMs: number | null }> {
-    const timer = new GpuTimer(this.device);
-    try {
-      const encoder = this.device.createCommandEncoder();
-      const pass = encoder.beginComputePass(timer.passDescriptor());
-      this.dispatch(pass, 'renderField', this.allPixels);
-      pass.end();
-      timer.resolve(encoder);
-      this.device.queue.submit([encoder.finish()]);
-      const image = new Float32Array(await this.read(this.image, 12 * this.allPixels));
-      return { image, gpuMs: await timer.read() };
-    } finally {
-      timer.destroy();
-    }
+    return gpuCore(this.device)
+      .lease()
+      .run(async (lease) => {
+        const timer = lease.timer();
+        const encoder = this.device.createCommandEncoder();
+        const pass = encoder.beginComputePass(timer.passDescriptor());
+        this.dispatch(pass, 'renderField', this.allPixels);
+        pass.end();
+        timer.resolve(encoder);
+        this.device.queue.submit([encoder.finish()]);
+        const image = new Float32Array(await this.read(this.image, 12 * this.allPixels));
+        return { image, gpuMs: await timer.read() };
+      });
   }
 
   /** The current raw parameters, 4 per voxel. */
