@@ -3,6 +3,7 @@
 // shader, the beam arrow, the comparison lobe's wireframe and the faint "x-ray"
 // passes for what the lobe hides), drawn with a depth buffer and 4× multisampling
 // into a canvas that follows its CSS size and the device pixel ratio.
+import { gpuCore } from '../../gpu/core.ts';
 import { withErrorScopes } from '../../gpu/errors.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
@@ -94,23 +95,23 @@ export class LobeRenderer {
     format: GPUTextureFormat,
   ): Promise<LobeRenderer> {
     return withErrorScopes(device, 'hg-lobe 3D pipelines', () => {
-      const module = device.createShaderModule({ label: 'hg-lobe-3d', code });
-      const bindGroupLayout = device.createBindGroupLayout({
-        entries: [
-          {
-            binding: 0,
-            visibility: GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT,
-            buffer: { type: 'uniform' },
-          },
-        ],
-      });
-      const layout = device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout] });
+      // Module, layouts and pipelines from the GPU core: both lobe views share them.
+      const core = gpuCore(device);
+      const bindGroupLayout = core.bindGroupLayout([
+        {
+          binding: 0,
+          visibility: GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT,
+          buffer: { type: 'uniform' },
+        },
+      ]);
+      const layout = core.pipelineLayout([bindGroupLayout]);
       const make = (spec: PipelineSpec): GPURenderPipeline =>
-        device.createRenderPipeline({
+        core.renderPipeline({
+          code,
+          label: 'hg-lobe-3d',
           layout,
-          vertex: { module, entryPoint: spec.vertex },
+          vertex: { entryPoint: spec.vertex },
           fragment: {
-            module,
             entryPoint: spec.fragment,
             targets: [{ format, ...(spec.pass === 'opaque' ? {} : { blend: BLEND }) }],
           },

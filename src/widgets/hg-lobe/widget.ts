@@ -5,15 +5,147 @@
 // normalisation of the float64 twin, and the cost of sampling on the GPU next to
 // the CPU twin (averaged over frames); a cancellable sweep over N = 2¹⁰ … 2²⁰ plots
 // the histogram's L1 error against the sampling time, next to its exact expectation.
-//
-// Not yet ported to a view: load() returns the widget's own element class, which
-// keeps its shell code (see /work/briefs/porting.md); the data below is already
-// the definition's (deck slides, schema).
-import { defineWidget } from '../base/definition.ts';
+import { defineWidget, type FrameBackend } from '../base/definition.ts';
+import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import { hgEval } from '../../reference/phase.ts';
 import { HG_LOBE } from './schema.ts';
+import {
+  ALPHA,
+  BIN_COUNT,
+  chiSquareTest,
+  hgBinProbabilities,
+  meanCosine,
+  sphereIntegral,
+  type HgHistogram,
+  type HgLobeInputs,
+} from './model.ts';
 
-export const widget = defineWidget({
+/**
+ * One frame: the inputs, the backend's histogram, the float64 replay of the same
+ * streams (the histogram itself on the CPU, its first 2¹⁶ samples next to the GPU),
+ * and the sampling time averaged over recent frames at this N.
+ */
+export interface HgLobeFrame {
+  inputs: HgLobeInputs;
+  histogram: HgHistogram;
+  replay: HgHistogram;
+  averageMs: number;
+  averagedFrames: number;
+}
+
+export const COMPARE_NAMES = { none: '', isotropic: 'isotropic', rayleigh: 'Rayleigh' } as const;
+
+const SUPERSCRIPT_DIGITS = '⁰¹²³⁴⁵⁶⁷⁸⁹';
+
+export function superscript(value: number): string {
+  return [...String(value)]
+    .map((c) => (c === '-' ? '⁻' : (SUPERSCRIPT_DIGITS[Number(c)] ?? c)))
+    .join('');
+}
+
+/** How far the GPU's bins are from the float64 replay of the same streams. */
+function replayValue({ histogram, replay }: HgLobeFrame, backend: FrameBackend) {
+  if (backend.kind !== 'gpu') return 'this is the float64 replay (CPU fallback)';
+  if (replay.sampleCount !== histogram.sampleCount)
+    return 'replayed on the CPU for the first 2¹⁶ samples only (timing)';
+  let moved = 0;
+  for (let k = 0; k < BIN_COUNT; k++)
+    moved += Math.abs((histogram.bins[k] ?? 0) - (replay.bins[k] ?? 0));
+  moved /= 2;
+  return {
+    text:
+      moved === 0
+        ? 'identical bins (GPU f32 vs CPU f64)'
+        : `${moved} of ${histogram.sampleCount} samples in a neighbouring bin (f32 rounding at bin edges)`,
+    state: moved <= 1e-3 * histogram.sampleCount ? ('ok' as const) : ('bad' as const),
+  };
+}
+
+export const widget = defineWidget<HgLobeFrame>({
   entry: HG_LOBE,
+  presets: [
+    { label: 'g = −0.3 (back)', values: { g: -0.3 } },
+    { label: 'g = 0 (isotropic)', values: { g: 0 } },
+    { label: 'g = 0.6 (forward)', values: { g: 0.6 } },
+    { label: 'g = 0.9 (clouds)', values: { g: 0.9 } },
+    { label: 'Rayleigh vs isotropic', values: { g: 0, compare: 'rayleigh' } },
+  ],
+  readouts: {
+    rows: [
+      {
+        key: 'normalisation',
+        label: '∫ p dω (float64 quadrature)',
+        format: ({ inputs }) => {
+          const integral = sphereIntegral((mu) => hgEval(inputs.g, mu));
+          return {
+            text: integral.toFixed(10),
+            state: Math.abs(integral - 1) < 1e-9 ? 'ok' : 'bad',
+          };
+        },
+      },
+      {
+        key: 'forward',
+        label: 'p(θ = 0°), forward',
+        format: ({ inputs }) => `${formatNumber(hgEval(inputs.g, 1))} sr⁻¹`,
+      },
+      {
+        key: 'backward',
+        label: 'p(θ = 180°), backward',
+        format: ({ inputs }) => `${formatNumber(hgEval(inputs.g, -1))} sr⁻¹`,
+      },
+      {
+        key: 'mean-cosine',
+        label: 'Sample mean cosine ± SE',
+        format: ({ inputs, histogram }) => {
+          const mean = meanCosine(histogram, inputs.g);
+          return {
+            text: `${formatNumber(mean.mean, 5)} ± ${formatNumber(mean.standardError, 2)} (g = ${formatNumber(inputs.g, 4)}, ${formatNumber(Math.abs(mean.zScore), 2)} SE)`,
+            state: Math.abs(mean.zScore) < 5 ? 'ok' : 'bad',
+          };
+        },
+      },
+      {
+        key: 'chi-square',
+        label: 'χ² of 64 bins vs closed form',
+        format: ({ inputs, histogram }) => {
+          const chi = chiSquareTest(
+            histogram.bins,
+            hgBinProbabilities(inputs.g),
+            histogram.sampleCount,
+          );
+          const pooled = chi.pooled > 0 ? `, ${chi.pooled} sparse bins pooled` : '';
+          return {
+            text: `${formatNumber(chi.statistic, 4)} (df ${chi.df}${pooled}): ${chi.passes ? 'passes' : 'fails'} at α = ${ALPHA} (critical ${formatNumber(chi.critical, 4)})`,
+            state: chi.passes ? 'ok' : 'bad',
+          };
+        },
+      },
+      { key: 'replay', label: 'Histogram vs float64 replay', format: replayValue },
+      // The sweep's rows are the view's to write (context.setReadout).
+      { key: 'sweep', label: 'Sweep: L1 error ∝ N^p', initial: 'run the sweep' },
+      { key: 'sweep-check', label: 'Sweep: L1 at N = 2²⁰ vs expected', initial: 'run the sweep' },
+    ],
+    cost: ({ histogram }) => ({ milliseconds: histogram.milliseconds, timing: histogram.timing }),
+    costLine: ({ inputs, histogram, replay, averageMs, averagedFrames }, how, backend) => {
+      const n = histogram.sampleCount;
+      const nText = `2${superscript(inputs.samplesExponent)} = ${n} samples`;
+      const time =
+        averagedFrames > 1
+          ? `${formatMilliseconds(averageMs)} (${how}, mean of the last ${averagedFrames} frames at this N)`
+          : `${formatMilliseconds(averageMs)} (${how}, one frame so far)`;
+      if (backend.kind !== 'gpu') return `${nText} in ${time}, float64 twin.`;
+      let twin: string;
+      if (replay.sampleCount === n) {
+        twin = `float64 twin on the CPU: ${formatMilliseconds(replay.milliseconds)} for the same ${n}`;
+      } else {
+        const factor = n / replay.sampleCount;
+        twin =
+          `float64 twin on the CPU: ≈ ${formatMilliseconds(replay.milliseconds * factor)} for ${n}, ` +
+          `scaled ×${factor} from ${formatMilliseconds(replay.milliseconds)} measured on ${replay.sampleCount}`;
+      }
+      return `${nText} in ${time}; ${twin}.`;
+    },
+  },
   slides: [
     {
       title: 'Back scattering: g = −0.3',
@@ -55,5 +187,5 @@ export const widget = defineWidget({
       chapter: '03-phase-functions-and-in-scattering',
     },
   ],
-  load: async () => ({ element: (await import('./element.ts')).HgLobeElement }),
+  load: () => import('./view.ts'),
 });

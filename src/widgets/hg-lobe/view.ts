@@ -1,0 +1,370 @@
+// The drawing of <sb-hg-lobe>: the polar picture (WebGPU, or the CPU twin at half
+// resolution) with its HTML labels, the 3D lobe (LobeView, on its own schedule),
+// the histogram against the closed form, and the error-versus-time sweep over
+// N = 2¹⁰ … 2²⁰. Readouts, backends and fallback: widget.ts and the base element.
+import type { GpuContext } from '../../gpu/device.ts';
+import { hgEval } from '../../reference/phase.ts';
+import { gpuFailureReason } from '../base/backend.ts';
+import { formatNumber } from '../base/format.ts';
+import { LinePlot, type PlotSeries } from '../base/plot.ts';
+import { SweepControls, logLogSlope, type SweepPoint } from '../base/sweep.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
+import { drawLobeCpu, sampleHistogramCpu, sampleHistogramCpuInChunks } from './cpuBackend.ts';
+import { HgLobeGpu } from './gpuBackend.ts';
+import { LobeView } from './lobeView.ts';
+import {
+  BIN_COUNT,
+  CPU_TIMING_CAP,
+  SWEEP_EXPONENTS,
+  SWEEP_REPETITIONS,
+  binEdge,
+  comparePhase,
+  expectedHistogramL1,
+  hgBinProbabilities,
+  histogramL1,
+  inputsFrom,
+  median,
+  polarLayout,
+  type HgHistogram,
+  type HgLobeInputs,
+  type PolarLayout,
+  type RadiusScale,
+} from './model.ts';
+import { COMPARE_NAMES, superscript, type HgLobeFrame } from './widget.ts';
+
+/** Frames whose sampling time the cost line averages (per N and backend). */
+const TIMING_FRAMES = 8;
+
+/** A slope with three decimals and a true minus sign. */
+function signed(value: number): string {
+  return value.toFixed(3).replace('-', '−');
+}
+
+/** Ring values and directions over the canvas, in per cent of its size so they follow its CSS size. */
+function drawLabels(labels: HTMLElement, inputs: HgLobeInputs, layout: PolarLayout): void {
+  const label = (text: string, x: number, y: number, className: string): HTMLElement => {
+    const span = document.createElement('span');
+    span.className = className;
+    span.textContent = text;
+    span.style.left = `${(100 * x) / layout.width}%`;
+    span.style.top = `${(100 * y) / layout.height}%`;
+    return span;
+  };
+  const spans: HTMLElement[] = [
+    label('incident beam →', 12, layout.centreY - 12, 'sb-hg-label sb-hg-label--start'),
+    label(
+      'θ = 0° (forward)',
+      layout.width - 12,
+      layout.centreY - 12,
+      'sb-hg-label sb-hg-label--end',
+    ),
+    label('θ = 90°', layout.centreX - 6, 28, 'sb-hg-label sb-hg-label--end'),
+  ];
+  // Ring values below the beam axis on the backward side, where the beam is the only other mark.
+  // Every ring when they are at least 56 px apart, otherwise every second one.
+  const spacing = layout.rings[0]?.radius ?? 0;
+  const every = spacing >= 56 ? 1 : 2;
+  layout.rings.forEach((ring, index) => {
+    const x = layout.centreX - ring.radius;
+    if (x < 24 || (index + 1) % every !== 0) return;
+    const text =
+      inputs.scale === 'log'
+        ? `10${superscript(Math.round(Math.log10(ring.value)))}`
+        : formatNumber(ring.value, 3);
+    spans.push(label(text, x, layout.centreY + 6, 'sb-hg-label sb-hg-label--ring'));
+  });
+  const other = COMPARE_NAMES[inputs.compare];
+  spans.push(
+    label(
+      `filled: Henyey–Greenstein${other ? ` · outline: ${other}` : ''}`,
+      12,
+      layout.height - 14,
+      'sb-hg-label sb-hg-label--note',
+    ),
+  );
+  spans.push(
+    label(
+      inputs.scale === 'log' ? 'radius ∝ log₁₀ p, rings in sr⁻¹' : 'radius ∝ p, rings in sr⁻¹',
+      layout.width - 12,
+      layout.height - 14,
+      'sb-hg-label sb-hg-label--end sb-hg-label--note',
+    ),
+  );
+  labels.replaceChildren(...spans);
+}
+
+export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFrame, HgLobeGpu> {
+  const polar = context.canvas({ width: 960, height: 480, className: 'sb-canvas sb-hg-polar' });
+  const labels = document.createElement('div');
+  let lobe: LobeView | null = null;
+  let sweep: SweepControls | null = null;
+  let sweepRuns = 0;
+  let plotArea: HTMLElement | null = null;
+  let plot: LinePlot | null = null;
+  let plotScale: RadiusScale | null = null;
+  /** Recent sampling times in ms, keyed by timing kind and N. */
+  const recentTimes = new Map<string, number[]>();
+
+  /** The mean of the last TIMING_FRAMES sampling times with this N and timing kind, this frame included. */
+  const averageTime = (histogram: HgHistogram): { averageMs: number; averagedFrames: number } => {
+    const key = `${histogram.timing}:${histogram.sampleCount}`;
+    const times = [...(recentTimes.get(key) ?? []), histogram.milliseconds].slice(-TIMING_FRAMES);
+    recentTimes.set(key, times);
+    return {
+      averageMs: times.reduce((a, b) => a + b, 0) / times.length,
+      averagedFrames: times.length,
+    };
+  };
+
+  const frameOf = (
+    inputs: HgLobeInputs,
+    histogram: HgHistogram,
+    replay: HgHistogram,
+  ): HgLobeFrame => ({ inputs, histogram, replay, ...averageTime(histogram) });
+
+  /**
+   * Error against time for N = 2¹⁰ … 2²⁰ (the inputs of the moment the sweep starts):
+   * per N, SWEEP_REPETITIONS sampling passes with seeds s, s + 1, …; x is the
+   * median time of a pass (GPU timestamps where the device has them, wall time
+   * otherwise; the CPU twin's time on the fallback), y the mean L1 distance of the
+   * histograms to the analytic bin probabilities (physics.md §2.4). The second,
+   * dashed series is the exact expected L1 at the same time, from the binomial law
+   * of each bin count, so the measured curve is judged against an analytic value.
+   */
+  const runSweep = async (controls: SweepControls): Promise<void> => {
+    const run = ++sweepRuns;
+    let ended = false;
+    await controls.runSeries(async () => {
+      const inputs = inputsFrom(context.values);
+      const backend = await context.backend();
+      const layout = polarLayout(inputs, 960, 480);
+      const probabilities = hgBinProbabilities(inputs.g);
+      const timings = new Set<HgHistogram['timing']>();
+      const timesByN = new Map<number, number>();
+      context.setReadout('sweep', 'sweeping…');
+      context.setReadout('sweep-check', 'sweeping…');
+      const where = backend.kind === 'gpu' ? 'GPU' : 'CPU twin';
+      const measure = async (n: number): Promise<Omit<SweepPoint, 'n'>> => {
+        const times: number[] = [];
+        let error = 0;
+        for (let repetition = 0; repetition < SWEEP_REPETITIONS; repetition++) {
+          const pass: HgLobeInputs = {
+            ...inputs,
+            sampleCount: n,
+            samplesExponent: Math.round(Math.log2(n)),
+            seed: inputs.seed + repetition,
+          };
+          const histogram =
+            backend.kind === 'gpu'
+              ? await backend.renderer.sample(pass, layout)
+              : await sampleHistogramCpuInChunks(pass.g, n, pass.seed);
+          timings.add(histogram.timing);
+          times.push(histogram.milliseconds);
+          error += histogramL1(histogram.bins, probabilities, n);
+        }
+        const milliseconds = median(times);
+        timesByN.set(n, milliseconds);
+        return { rmse: error / SWEEP_REPETITIONS, milliseconds };
+      };
+      return {
+        series: [
+          { label: `measured, g = ${formatNumber(inputs.g, 3)}, ${where}`, color: '#d9822b' },
+          { label: 'exact expectation', color: '#8a63d2', dash: [6, 4] },
+        ],
+        measure: async (series, n) =>
+          series === 0
+            ? measure(n)
+            : {
+                rmse: expectedHistogramL1(probabilities, n),
+                milliseconds: timesByN.get(n) ?? Number.NaN,
+              },
+        finish: (points) => {
+          ended = true;
+          const [measured = [], expected = []] = points;
+          const slope = logLogSlope(
+            measured.map((p) => p.n),
+            measured.map((p) => p.rmse),
+          );
+          const expectedSlope = logLogSlope(
+            expected.map((p) => p.n),
+            expected.map((p) => p.rmse),
+          );
+          context.setReadout(
+            'sweep',
+            slope === null
+              ? 'no fit'
+              : `p = ${signed(slope)} (exact expectation ${signed(expectedSlope ?? -0.5)})`,
+            slope !== null && Math.abs(slope - (expectedSlope ?? -0.5)) < 0.1 ? 'ok' : 'bad',
+          );
+          const last = measured.at(-1);
+          const lastExpected = expected.at(-1);
+          if (last && lastExpected) {
+            const ratio = last.rmse / lastExpected.rmse;
+            context.setReadout(
+              'sweep-check',
+              `${formatNumber(last.rmse, 3)} vs ${formatNumber(lastExpected.rmse, 3)} (ratio ${formatNumber(ratio, 3)})`,
+              // The mean of 3 L1 errors, each a sum over 64 bins, scatters by a few per cent.
+              Math.abs(ratio - 1) < 0.2 ? 'ok' : 'bad',
+            );
+          }
+          const how = [...timings]
+            .map((t) =>
+              t === 'gpu-timestamp'
+                ? 'GPU timestamps'
+                : t === 'gpu-wall'
+                  ? 'wall time (no timestamp queries)'
+                  : 'CPU wall time',
+            )
+            .join(', ');
+          return `g = ${formatNumber(inputs.g, 3)}, ${where}, time from ${how}`;
+        },
+        failed: () => {
+          ended = true;
+          context.setReadout('sweep', 'failed', 'bad');
+          context.setReadout('sweep-check', 'failed', 'bad');
+        },
+      };
+    });
+    // Cancelled (or the GPU was lost): say so, unless a newer sweep has taken over.
+    if (!ended && run === sweepRuns) {
+      context.setReadout('sweep', 'cancelled');
+      context.setReadout('sweep-check', 'cancelled');
+    }
+  };
+
+  const updatePlot = (inputs: HgLobeInputs, histogram: HgHistogram, onGpu: boolean): void => {
+    if (!plotArea) return;
+    if (!plot || plotScale !== inputs.scale) {
+      plot?.destroy();
+      plotArea.replaceChildren();
+      plot = new LinePlot(plotArea, {
+        xLabel: 'μ = cos θ',
+        yLabel: 'density of μ, 2π·p(μ)',
+        height: 260,
+        yLog: inputs.scale === 'log',
+      });
+      plotScale = inputs.scale;
+    }
+    // A staircase: each bin's density at both of its ends (nudged inward so x stays increasing).
+    const width = 2 / BIN_COUNT;
+    const x: number[] = [];
+    const sampled: number[] = [];
+    for (let k = 0; k < BIN_COUNT; k++) {
+      const density = (histogram.bins[k] ?? 0) / (histogram.sampleCount * width);
+      x.push(binEdge(k) + 1e-9, binEdge(k + 1) - 1e-9);
+      sampled.push(density, density);
+    }
+    const series: PlotSeries[] = [
+      {
+        label: onGpu ? 'sampled on the GPU' : 'sampled by the CPU twin',
+        color: '#d9822b',
+        values: sampled,
+      },
+      {
+        label: 'analytic 2π·p_HG(μ)',
+        color: '#8a63d2',
+        values: x.map((mu) => 2 * Math.PI * hgEval(inputs.g, mu)),
+      },
+    ];
+    const other = comparePhase(inputs.compare);
+    if (other) {
+      series.push({
+        label: `${COMPARE_NAMES[inputs.compare]} 2π·p(μ)`,
+        color: '#5b8def',
+        dash: [6, 4],
+        values: x.map((mu) => 2 * Math.PI * other(mu)),
+      });
+    }
+    plot.update(x, series);
+  };
+
+  return {
+    cpuNotice:
+      'Showing the float64 CPU twin: the same samples (the same PCG streams), the polar picture at half resolution and the 3D lobe as a wireframe.',
+    build(stage) {
+      const figure = document.createElement('div');
+      figure.className = 'sb-hg-figure sb-hg-polar-figure';
+      labels.className = 'sb-hg-labels';
+      labels.setAttribute('aria-hidden', 'true');
+      figure.append(polar.element, labels);
+      stage.appendChild(figure);
+      lobe = new LobeView((error) => context.useCpu(gpuFailureReason(error)));
+      stage.appendChild(lobe.figure);
+      plotArea = document.createElement('div');
+      plotArea.className = 'sb-plot';
+      plotArea.setAttribute('role', 'img');
+      plotArea.setAttribute(
+        'aria-label',
+        'Histogram of the sampled scattering cosines against the analytic density 2π·p(μ)',
+      );
+      stage.appendChild(plotArea);
+      const controls = new SweepControls(
+        stage,
+        context.host,
+        {
+          name: 'N',
+          buttonText: 'Run sweep N = 2¹⁰ … 2²⁰',
+          hint:
+            'Run the sweep to plot the histogram’s error against the time of one sampling pass, for N = 2¹⁰ … 2²⁰ ' +
+            `(time: median of ${SWEEP_REPETITIONS} passes; error: L1 distance Σ|Oₖ/N − Pₖ| to the analytic bin probabilities, ` +
+            'mean of the same passes). A Monte Carlo estimate falls as N^(−½); the dashed curve is its exact expectation.',
+          color: '#d9822b',
+          points: SWEEP_EXPONENTS.map((n) => 2 ** n),
+          errorName: 'L1 error of the histogram',
+        },
+        () => void runSweep(controls),
+      );
+      sweep = controls;
+    },
+    createRenderer: (gpu: GpuContext) => new HgLobeGpu(gpu, polar.element),
+    async renderGpu(renderer, gpu) {
+      const inputs = inputsFrom(context.values);
+      const layout = polarLayout(inputs, polar.element.width, polar.element.height);
+      const histogram = await renderer.sample(inputs, layout);
+      await renderer.draw(inputs, layout);
+      lobe?.useGpu(gpu);
+      // The twin replays the same streams, capped so that dragging a slider stays smooth.
+      const replay = sampleHistogramCpu(
+        inputs.g,
+        Math.min(inputs.sampleCount, CPU_TIMING_CAP),
+        inputs.seed,
+      );
+      return frameOf(inputs, histogram, replay);
+    },
+    renderCpu() {
+      const inputs = inputsFrom(context.values);
+      drawLobeCpu(polar.element, inputs);
+      lobe?.useCpu();
+      const histogram = sampleHistogramCpu(inputs.g, inputs.sampleCount, inputs.seed);
+      return frameOf(inputs, histogram, histogram);
+    },
+    onCpuFallback: () => {
+      lobe?.useCpu();
+      sweep?.cancel('stopped: the GPU path was lost');
+    },
+    destroyRenderer: (renderer) => renderer.destroy(),
+    /** The 3D view draws on its own schedule, while on screen: printing draws it too. */
+    drawForPrint: async () => {
+      await lobe?.drawNow();
+    },
+    destroy: () => {
+      lobe?.destroy();
+      sweep?.cancel('stopped');
+      plot?.destroy();
+    },
+    show({ inputs, histogram }, backend) {
+      const layout = polarLayout(inputs, polar.element.width, polar.element.height);
+      lobe?.show({ inputs, logFloor: layout.logFloor });
+      drawLabels(labels, inputs, layout);
+      const g = inputs.g;
+      const other = COMPARE_NAMES[inputs.compare];
+      polar.element.setAttribute(
+        'aria-label',
+        `Polar plot of the Henyey–Greenstein phase function with g = ${formatNumber(g, 3)}: ` +
+          `the beam enters from the left; the lobe reaches ${formatNumber(hgEval(g, 1), 3)} per steradian forward ` +
+          `and ${formatNumber(hgEval(g, -1), 3)} backward${other ? `, outlined against the ${other} phase function` : ''}.`,
+      );
+      updatePlot(inputs, histogram, backend.kind === 'gpu');
+    },
+  };
+}
