@@ -293,3 +293,51 @@ export function vec4s(values: readonly number[]): number[][] {
     return [...chunk, ...new Array<number>(4 - chunk.length).fill(0)];
   });
 }
+
+/** A member of `struct`: its offset, its type and (only when @size sets it) its size. */
+type MemberSpec = readonly [offset: number, type: TypeLayout, size?: number];
+
+/**
+ * Builds a struct layout from compact member specs (the generated table's form: shared
+ * type constants referenced by name keep it small on the page).
+ */
+export function struct<const M extends Readonly<Record<string, MemberSpec>>>(
+  name: string,
+  size: number,
+  align: number,
+  specs: M,
+): {
+  readonly kind: 'struct';
+  readonly name: string;
+  readonly size: number;
+  readonly align: number;
+  readonly members: {
+    readonly [K in keyof M]: {
+      readonly offset: number;
+      readonly size: number;
+      readonly type: M[K][1];
+    };
+  };
+} {
+  const members: Record<string, MemberLayout> = {};
+  for (const [member, [offset, type, memberSize]] of Object.entries(specs)) {
+    members[member] = { offset, size: memberSize ?? type.size, type };
+  }
+  return { kind: 'struct', name, size, align, members: members as never };
+}
+
+/** An array layout of `count` elements `stride` bytes apart (count 0: runtime-sized). */
+export function array<const E extends TypeLayout>(
+  element: E,
+  count: number,
+  stride: number,
+): {
+  readonly kind: 'array';
+  readonly element: E;
+  readonly count: number;
+  readonly stride: number;
+  readonly size: number;
+  readonly align: number;
+} {
+  return { kind: 'array', element, count, stride, size: count * stride, align: element.align };
+}
