@@ -17,6 +17,8 @@ export interface NumberParameter {
   step: number;
   default: number;
   description: string;
+  /** Former names, still read from attributes and links so that old pages and links keep working. */
+  aliases?: readonly string[];
 }
 
 export interface ChoiceParameter {
@@ -26,6 +28,8 @@ export interface ChoiceParameter {
   choices: readonly { value: string; label: string }[];
   default: string;
   description: string;
+  /** Former names, still read from attributes and links. */
+  aliases?: readonly string[];
 }
 
 export type Parameter = NumberParameter | ChoiceParameter;
@@ -62,7 +66,7 @@ export function parseParameters(
   const values: ParameterValues = {};
   const warnings: string[] = [];
   for (const parameter of parameters) {
-    const text = raw(parameter.name);
+    const text = rawValue(parameter, raw);
     if (text === null || text === undefined || text.trim() === '') {
       values[parameter.name] = parameter.default;
       continue;
@@ -97,6 +101,40 @@ export function parseParameters(
     }
   }
   return { values, warnings };
+}
+
+/** The raw text under the parameter's name, else under its first alias that has one. */
+function rawValue(
+  parameter: Parameter,
+  raw: (name: string) => string | null | undefined,
+): string | null | undefined {
+  const text = raw(parameter.name);
+  if (text !== null && text !== undefined) return text;
+  for (const alias of parameter.aliases ?? []) {
+    const aliased = raw(alias);
+    if (aliased !== null && aliased !== undefined) return aliased;
+  }
+  return text;
+}
+
+/**
+ * Renames former names (aliases) in a name → value map to the current names, so that an
+ * old link overrides a page's attributes like a new one; the current name wins over an alias.
+ */
+export function withCurrentNames<Value>(
+  parameters: readonly Parameter[],
+  entries: ReadonlyMap<string, Value>,
+): Map<string, Value> {
+  const renamed = new Map(entries);
+  for (const parameter of parameters) {
+    for (const alias of parameter.aliases ?? []) {
+      const value = renamed.get(alias);
+      if (value === undefined) continue;
+      renamed.delete(alias);
+      if (!renamed.has(parameter.name)) renamed.set(parameter.name, value);
+    }
+  }
+  return renamed;
 }
 
 /** Serializes values that differ from their defaults, for the URL hash. */

@@ -26,7 +26,7 @@ const NON_DEFAULT: Readonly<Record<string, readonly [string, string] | null>> = 
   'inverse-render': ['novel', '200'],
   'transfer-function': ['azimuth', '-120'],
   'single-scatter': ['sigma-s', '3'],
-  'volume-path-tracer': ['density', '1'],
+  'volume-path-tracer': ['optical-thickness', '1'],
   'photon-map': ['radius', '0.2'],
   exercise: null,
 };

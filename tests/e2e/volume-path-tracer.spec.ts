@@ -145,6 +145,7 @@ test('pause stops the accumulation and the reference can be cancelled', async ({
 });
 
 test('a deep link restores the state exactly', async ({ page }) => {
+  // Written as an old link: `density` is the former name of optical-thickness.
   const widget = await openWidget(page, {
     scene: 'cloud',
     albedo: '0.75',
@@ -155,7 +156,7 @@ test('a deep link restores the state exactly', async ({ page }) => {
   await expect(control(widget, 'scene')).toHaveValue('cloud');
   await expect(control(widget, 'albedo')).toHaveValue('0.75');
   await expect(control(widget, 'g')).toHaveValue('0.3');
-  await expect(control(widget, 'density')).toHaveValue('12');
+  await expect(control(widget, 'optical-thickness')).toHaveValue('12');
   await expect(control(widget, 'spp')).toHaveValue('3');
   await expect(widget.locator('[data-readout="plan-multiple"]')).toContainText('majorant grid');
   await waitForSpp(widget, 3);

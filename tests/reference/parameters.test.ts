@@ -2,8 +2,13 @@
 // never thrown (DESIGN.md contract 2).
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { encodeParameters, parseParameters } from '../../src/widgets/parameters.ts';
+import {
+  encodeParameters,
+  parseParameters,
+  withCurrentNames,
+} from '../../src/widgets/parameters.ts';
 import { BEER_LAW } from '../../src/widgets/beer-law/schema.ts';
+import { VOLUME_PATH_TRACER } from '../../src/widgets/volume-path-tracer/schema.ts';
 
 const parse = (attributes: Record<string, string>) =>
   parseParameters(BEER_LAW.parameters, (name) => attributes[name]);
@@ -56,5 +61,51 @@ describe('parseParameters', () => {
     expect(encoded).toBe('sigma-a=1.25&profile=layered');
     const search = new URLSearchParams(encoded);
     expect(parseParameters(BEER_LAW.parameters, (name) => search.get(name)).values).toEqual(values);
+  });
+});
+
+describe('renamed parameters', () => {
+  const VPT = VOLUME_PATH_TRACER.parameters;
+  it('reads a former name (alias) from attributes when the current name is absent', () => {
+    const attributes: Record<string, string> = { density: '12' };
+    const { values, warnings } = parseParameters(VPT, (name) => attributes[name]);
+    expect(warnings).toEqual([]);
+    expect(values['optical-thickness']).toBe(12);
+    expect(values['density']).toBeUndefined();
+  });
+
+  it('prefers the current name over its alias, and clamps an alias like the name', () => {
+    const both: Record<string, string> = { density: '12', 'optical-thickness': '3' };
+    expect(parseParameters(VPT, (name) => both[name]).values['optical-thickness']).toBe(3);
+    const outside: Record<string, string> = { density: '99' };
+    const parsed = parseParameters(VPT, (name) => outside[name]);
+    expect(parsed.values['optical-thickness']).toBe(30);
+    expect(parsed.warnings).toHaveLength(1);
+  });
+
+  it('renames an old link’s keys so that they override the page’s attributes', () => {
+    const link = withCurrentNames(
+      VPT,
+      new Map([
+        ['density', '12'],
+        ['spp', '3'],
+      ]),
+    );
+    expect([...link]).toEqual([
+      ['spp', '3'],
+      ['optical-thickness', '12'],
+    ]);
+    const attributes: Record<string, string> = { 'optical-thickness': '8' };
+    const merged = parseParameters(VPT, (name) => link.get(name) ?? attributes[name]);
+    expect(merged.values['optical-thickness']).toBe(12);
+    const current = withCurrentNames(
+      VPT,
+      new Map([
+        ['optical-thickness', '4'],
+        ['density', '12'],
+      ]),
+    );
+    expect(current.get('optical-thickness')).toBe('4');
+    expect(current.has('density')).toBe(false);
   });
 });

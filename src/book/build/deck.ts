@@ -49,7 +49,7 @@ export function validateDeck(slides: readonly DeckSlide[] = DECK): void {
     if (parsed.warnings.length)
       throw new Error(`deck slide ${index + 1}: ${parsed.warnings.join('; ')}`);
     const unknown = Object.keys(slide.attributes).filter(
-      (name) => !entry.parameters.some((p) => p.name === name),
+      (name) => !entry.parameters.some((p) => p.name === name || p.aliases?.includes(name)),
     );
     if (unknown.length)
       throw new Error(`deck slide ${index + 1}: unknown attributes ${unknown.join(', ')}`);

@@ -7,6 +7,7 @@
 import {
   encodeParameters,
   parseParameters,
+  withCurrentNames,
   type NumberParameter,
   type ChoiceParameter,
   type ParameterValues,
@@ -101,7 +102,8 @@ export abstract class WidgetElement extends HTMLElement {
     this.widgetId = this.id || `${this.entry.name}-${sameKind > 0 ? sameKind : instanceCounter}`;
     const attributes = parseParameters(this.entry.parameters, (name) => this.getAttribute(name));
     this.initialValues = { ...attributes.values };
-    const fromUrl = readWidgetState(this.widgetId);
+    // A link written before a parameter was renamed names it by its alias.
+    const fromUrl = withCurrentNames(this.entry.parameters, readWidgetState(this.widgetId));
     const merged = parseParameters(
       this.entry.parameters,
       (name) => fromUrl.get(name) ?? this.getAttribute(name),
@@ -321,7 +323,8 @@ export abstract class WidgetElement extends HTMLElement {
   protected applyPreset(index: number): void {
     const preset = this.presets[index];
     if (!preset) return;
-    this.values = { ...this.initialValues, ...preset.values };
+    const values = withCurrentNames(this.entry.parameters, new Map(Object.entries(preset.values)));
+    this.values = { ...this.initialValues, ...Object.fromEntries(values) };
     this.syncControls();
     this.saveState();
     this.scheduleRender();

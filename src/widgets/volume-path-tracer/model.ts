@@ -28,7 +28,7 @@ export function inputsFrom(values: ParameterValues): PathTracerInputs {
     scene: values['scene'] === 'cloud' ? 'cloud' : 'sphere',
     albedo: Number(values['albedo']),
     g: Number(values['g']),
-    density: Number(values['density']),
+    density: Number(values['optical-thickness']),
     spp: Math.max(1, Math.round(Number(values['spp']))),
   };
 }

@@ -49,7 +49,9 @@ export const VOLUME_PATH_TRACER: WidgetEntry = {
     },
     {
       kind: 'number',
-      name: 'density',
+      name: 'optical-thickness',
+      // Called density until it was named for what it is; old pages and links still say so.
+      aliases: ['density'],
       label: 'Optical thickness (diameter)',
       symbol: 'τ',
       unit: '',

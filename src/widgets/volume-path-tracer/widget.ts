@@ -22,7 +22,7 @@ export const widget = defineWidget({
         scene: 'sphere',
         albedo: '0.99',
         g: '0.8',
-        density: '10',
+        'optical-thickness': '10',
         spp: '4',
       },
       caption:
@@ -35,7 +35,7 @@ export const widget = defineWidget({
         scene: 'cloud',
         albedo: '0.98',
         g: '0.7',
-        density: '16',
+        'optical-thickness': '16',
         spp: '8',
       },
       caption:
