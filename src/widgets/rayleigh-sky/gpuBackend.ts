@@ -3,13 +3,13 @@
 // sun in a compute pass and draws the panorama in render passes, both timed with
 // timestamp queries where available and wall time otherwise.
 import { runCompute } from '../../gpu/compute.ts';
+import { gpuCore } from '../../gpu/core.ts';
 import { FullScreenPass } from '../../gpu/fullScreenPass.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { packStruct } from '../../gpu/layout.ts';
 import { rayleighSkyKernel } from '../../gpu/layouts.generated.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
-import { GpuTimer } from '../../gpu/timing.ts';
 import type { GpuTiming } from '../base/imageKernel.ts';
 import { exposureScale, probesFor, type Rgb, type SkyInputs, type SkyProbes } from './model.ts';
 
@@ -117,26 +117,27 @@ export class RayleighSkyGpu {
    */
   async draw(inputs: SkyInputs, passes = 1): Promise<PanoramaTime> {
     const pass = await this.pass();
-    const timer = new GpuTimer(this.gpu.device);
-    try {
-      const start = performance.now();
-      await pass.draw(packParams(inputs, this.canvas.width, this.canvas.height), {
-        timer,
-        passes,
+    // The timer is leased from the GPU core's pool (a sweep draws hundreds of times).
+    return gpuCore(this.gpu.device)
+      .lease()
+      .run(async (lease) => {
+        const timer = lease.timer();
+        const start = performance.now();
+        await pass.draw(packParams(inputs, this.canvas.width, this.canvas.height), {
+          timer,
+          passes,
+        });
+        await this.gpu.device.queue.onSubmittedWorkDone();
+        const wallMs = performance.now() - start;
+        const gpuMs = await timer.read();
+        const span = gpuMs ?? wallMs;
+        return {
+          milliseconds: span / passes,
+          spanMilliseconds: span,
+          passes,
+          timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+        };
       });
-      await this.gpu.device.queue.onSubmittedWorkDone();
-      const wallMs = performance.now() - start;
-      const gpuMs = await timer.read();
-      const span = gpuMs ?? wallMs;
-      return {
-        milliseconds: span / passes,
-        spanMilliseconds: span,
-        passes,
-        timing: gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
-      };
-    } finally {
-      timer.destroy();
-    }
   }
 
   destroy(): void {
