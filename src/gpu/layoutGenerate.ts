@@ -89,7 +89,7 @@ export async function generatedSource(table: KernelLayouts): Promise<string> {
         return constant(JSON.stringify(type), preferred, () => `${JSON.stringify(type)} as const`);
       }
       case 'array':
-        return `array(${expression(type.element)}, ${type.count}, ${type.stride})`;
+        return `/* @__PURE__ */ array(${expression(type.element)}, ${type.count}, ${type.stride})`;
       case 'struct':
         return constant(JSON.stringify(type), type.name, () => structCall(type));
     }
@@ -99,7 +99,8 @@ export async function generatedSource(table: KernelLayouts): Promise<string> {
       const size = member.size === member.type.size ? '' : `, ${member.size}`;
       return `${name}: [${member.offset}, ${expression(member.type)}${size}]`;
     });
-    return `struct('${layout.name}', ${layout.size}, ${layout.align}, { ${members.join(', ')} })`;
+    // Pure: the bundler drops the layouts no page imports.
+    return `/* @__PURE__ */ struct('${layout.name}', ${layout.size}, ${layout.align}, { ${members.join(', ')} })`;
   };
   const exports: string[] = [];
   for (const [kernel, layouts] of Object.entries(table)) {

@@ -6,7 +6,7 @@ import { array, struct } from './layout.ts';
 const f32 = { kind: 'scalar', scalar: 'f32', size: 4, align: 4 } as const;
 const u32 = { kind: 'scalar', scalar: 'u32', size: 4, align: 4 } as const;
 const vec4f = { kind: 'vector', scalar: 'f32', length: 4, size: 16, align: 16 } as const;
-const BeerLawParams = struct('BeerLawParams', 112, 16, {
+const BeerLawParams = /* @__PURE__ */ struct('BeerLawParams', 112, 16, {
   sigmaT: [0, f32],
   sigmaS: [4, f32],
   thickness: [8, f32],
@@ -19,9 +19,9 @@ const BeerLawParams = struct('BeerLawParams', 112, 16, {
   viewMax: [36, f32],
   width: [40, f32],
   height: [44, f32],
-  layers: [48, array(vec4f, 4, 16)],
+  layers: [48, /* @__PURE__ */ array(vec4f, 4, 16)],
 });
-const DeltaParams = struct('DeltaParams', 32, 4, {
+const DeltaParams = /* @__PURE__ */ struct('DeltaParams', 32, 4, {
   width: [0, u32],
   height: [4, u32],
   spp: [8, u32],
@@ -31,7 +31,7 @@ const DeltaParams = struct('DeltaParams', 32, 4, {
   pad0: [24, u32],
   pad1: [28, u32],
 });
-const DipoleProfileParams = struct('DipoleProfileParams', 64, 16, {
+const DipoleProfileParams = /* @__PURE__ */ struct('DipoleProfileParams', 64, 16, {
   sigmaSPrime: [0, vec4f],
   sigmaA: [16, vec4f],
   eta: [32, f32],
@@ -53,7 +53,7 @@ const mat4x4f = {
   align: 16,
 } as const;
 const vec3f = { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 } as const;
-const LobeView = struct('LobeView', 128, 16, {
+const LobeView = /* @__PURE__ */ struct('LobeView', 128, 16, {
   viewProjection: [0, mat4x4f],
   eye: [64, vec3f],
   g: [76, f32],
@@ -66,11 +66,11 @@ const LobeView = struct('LobeView', 128, 16, {
   warp: [124, f32],
 });
 const vec2f = { kind: 'vector', scalar: 'f32', length: 2, size: 8, align: 8 } as const;
-const Histogram = struct('Histogram', 256, 8, {
-  bins: [0, array(u32, 64, 4)],
-  partialSums: [256, array(vec2f, 0, 8)],
+const Histogram = /* @__PURE__ */ struct('Histogram', 256, 8, {
+  bins: [0, /* @__PURE__ */ array(u32, 64, 4)],
+  partialSums: [256, /* @__PURE__ */ array(vec2f, 0, 8)],
 });
-const HgLobeParams = struct('HgLobeParams', 48, 4, {
+const HgLobeParams = /* @__PURE__ */ struct('HgLobeParams', 48, 4, {
   g: [0, f32],
   compareLobe: [4, u32],
   logScale: [8, u32],
@@ -84,7 +84,7 @@ const HgLobeParams = struct('HgLobeParams', 48, 4, {
   centreX: [40, f32],
   centreY: [44, f32],
 });
-const InverseParams = struct('InverseParams', 64, 16, {
+const InverseParams = /* @__PURE__ */ struct('InverseParams', 64, 16, {
   resolution: [0, u32],
   size: [4, u32],
   trainViews: [8, u32],
@@ -100,7 +100,7 @@ const InverseParams = struct('InverseParams', 64, 16, {
   seed: [56, u32],
   pad0: [60, u32],
 });
-const Camera = struct('Camera', 80, 16, {
+const Camera = /* @__PURE__ */ struct('Camera', 80, 16, {
   position: [0, vec3f],
   projection: [12, u32],
   forward: [16, vec3f],
@@ -113,7 +113,7 @@ const Camera = struct('Camera', 80, 16, {
   imageSize: [72, vec2f],
 });
 const vec3u = { kind: 'vector', scalar: 'u32', length: 3, size: 12, align: 16 } as const;
-const PhotonParams = struct('PhotonParams', 208, 16, {
+const PhotonParams = /* @__PURE__ */ struct('PhotonParams', 208, 16, {
   boxMin: [0, vec3f],
   sigmaT: [12, f32],
   boxMax: [16, vec3f],
@@ -145,7 +145,7 @@ const PhotonParams = struct('PhotonParams', 208, 16, {
   queryCount: [200, u32],
   cellCount: [204, u32],
 });
-const SkyParams = struct('SkyParams', 64, 16, {
+const SkyParams = /* @__PURE__ */ struct('SkyParams', 64, 16, {
   sinSun: [0, f32],
   cosSun: [4, f32],
   exposureScale: [8, f32],
@@ -157,7 +157,7 @@ const SkyParams = struct('SkyParams', 64, 16, {
   probeMu: [32, vec4f],
   probeNu: [48, vec4f],
 });
-const RaymarchParams = struct('RaymarchParams', 32, 4, {
+const RaymarchParams = /* @__PURE__ */ struct('RaymarchParams', 32, 4, {
   width: [0, u32],
   height: [4, u32],
   steps: [8, u32],
@@ -167,19 +167,19 @@ const RaymarchParams = struct('RaymarchParams', 32, 4, {
   density: [24, f32],
   pad: [28, u32],
 });
-const PixelMoments = struct('PixelMoments', 32, 16, {
+const PixelMoments = /* @__PURE__ */ struct('PixelMoments', 32, 16, {
   mean: [0, vec3f],
   lookups: [12, u32],
   m2: [16, vec3f],
   capped: [28, u32],
 });
-const AccumulateParams = struct('AccumulateParams', 16, 4, {
+const AccumulateParams = /* @__PURE__ */ struct('AccumulateParams', 16, 4, {
   pixels: [0, u32],
   samplesBefore: [4, u32],
   samplesInPass: [8, u32],
   pad: [12, u32],
 });
-const DisplayParams = struct('DisplayParams', 32, 4, {
+const DisplayParams = /* @__PURE__ */ struct('DisplayParams', 32, 4, {
   width: [0, u32],
   height: [4, u32],
   mode: [8, u32],
@@ -189,7 +189,7 @@ const DisplayParams = struct('DisplayParams', 32, 4, {
   errorScale: [24, f32],
   pad1: [28, f32],
 });
-const RenderPass = struct('RenderPass', 32, 4, {
+const RenderPass = /* @__PURE__ */ struct('RenderPass', 32, 4, {
   sampleOffset: [0, u32],
   samples: [4, u32],
   seed: [8, u32],
@@ -200,7 +200,7 @@ const RenderPass = struct('RenderPass', 32, 4, {
   pad2: [28, u32],
 });
 const vec4u = { kind: 'vector', scalar: 'u32', length: 4, size: 16, align: 16 } as const;
-const SceneCameraRecord = struct('SceneCameraRecord', 64, 16, {
+const SceneCameraRecord = /* @__PURE__ */ struct('SceneCameraRecord', 64, 16, {
   position: [0, vec3f],
   projection: [12, u32],
   look: [16, vec3f],
@@ -210,14 +210,14 @@ const SceneCameraRecord = struct('SceneCameraRecord', 64, 16, {
   imageSize: [48, vec2f],
   height: [56, f32],
 });
-const SceneGridRecord = struct('SceneGridRecord', 48, 16, {
+const SceneGridRecord = /* @__PURE__ */ struct('SceneGridRecord', 48, 16, {
   dimensions: [0, vec3u],
   densityScale: [12, f32],
   boundsMin: [16, vec3f],
   maxDensity: [28, f32],
   boundsMax: [32, vec3f],
 });
-const SceneMediumRecord = struct('SceneMediumRecord', 96, 16, {
+const SceneMediumRecord = /* @__PURE__ */ struct('SceneMediumRecord', 96, 16, {
   kind: [0, u32],
   shape: [4, u32],
   phaseKind: [8, u32],
@@ -232,7 +232,7 @@ const SceneMediumRecord = struct('SceneMediumRecord', 96, 16, {
   phaseTable: [76, u32],
   emission: [80, vec3f],
 });
-const Light = struct('Light', 64, 16, {
+const Light = /* @__PURE__ */ struct('Light', 64, 16, {
   kind: [0, u32],
   cosOuter: [4, f32],
   cosInner: [8, f32],
@@ -244,7 +244,7 @@ const Light = struct('Light', 64, 16, {
   value: [48, vec3f],
   pad3: [60, f32],
 });
-const Surface = struct('Surface', 64, 16, {
+const Surface = /* @__PURE__ */ struct('Surface', 64, 16, {
   kind: [0, u32],
   pad0: [4, f32],
   pad1: [8, f32],
@@ -256,17 +256,17 @@ const Surface = struct('Surface', 64, 16, {
   albedo: [48, vec3f],
   pad4: [60, f32],
 });
-const SceneRecords = struct('SceneRecords', 2096, 16, {
+const SceneRecords = /* @__PURE__ */ struct('SceneRecords', 2096, 16, {
   header: [0, vec4u],
   camera: [16, SceneCameraRecord],
   grid: [80, SceneGridRecord],
   majorant: [128, SceneGridRecord],
-  media: [176, array(SceneMediumRecord, 4, 96)],
-  lights: [560, array(Light, 8, 64)],
-  surfaces: [1072, array(Surface, 16, 64)],
+  media: [176, /* @__PURE__ */ array(SceneMediumRecord, 4, 96)],
+  lights: [560, /* @__PURE__ */ array(Light, 8, 64)],
+  surfaces: [1072, /* @__PURE__ */ array(Surface, 16, 64)],
 });
 const vec2u = { kind: 'vector', scalar: 'u32', length: 2, size: 8, align: 8 } as const;
-const Statistics = struct('Statistics', 64, 8, {
+const Statistics = /* @__PURE__ */ struct('Statistics', 64, 8, {
   radiance: [0, f32],
   standardError: [4, f32],
   standardErrorSq: [8, f32],
@@ -281,13 +281,13 @@ const Statistics = struct('Statistics', 64, 8, {
   capped: [48, vec2u],
   pad1: [56, vec2u],
 });
-const StatisticsParams = struct('StatisticsParams', 16, 4, {
+const StatisticsParams = /* @__PURE__ */ struct('StatisticsParams', 16, 4, {
   pixels: [0, u32],
   samples: [4, f32],
   referenceSamples: [8, f32],
   pad: [12, u32],
 });
-const SlabKernelParams = struct('SlabKernelParams', 80, 16, {
+const SlabKernelParams = /* @__PURE__ */ struct('SlabKernelParams', 80, 16, {
   sigmaA: [0, vec4f],
   sigmaS: [16, vec4f],
   g: [32, f32],
@@ -303,7 +303,7 @@ const SlabKernelParams = struct('SlabKernelParams', 80, 16, {
   rMax: [72, f32],
   pad: [76, u32],
 });
-const TransferParams = struct('TransferParams', 176, 16, {
+const TransferParams = /* @__PURE__ */ struct('TransferParams', 176, 16, {
   width: [0, u32],
   height: [4, u32],
   rowOffset: [8, u32],
@@ -322,15 +322,15 @@ const TransferParams = struct('TransferParams', 176, 16, {
   pad1: [168, f32],
   pad2: [172, f32],
 });
-const TransferFunction = struct('TransferFunction', 336, 16, {
+const TransferFunction = /* @__PURE__ */ struct('TransferFunction', 336, 16, {
   count: [0, u32],
   pad0: [4, u32],
   pad1: [8, u32],
   pad2: [12, u32],
-  values: [16, array(vec4f, 4, 16)],
-  rgba: [80, array(vec4f, 16, 16)],
+  values: [16, /* @__PURE__ */ array(vec4f, 4, 16)],
+  rgba: [80, /* @__PURE__ */ array(vec4f, 16, 16)],
 });
-const TranslucentParams = struct('TranslucentParams', 112, 16, {
+const TranslucentParams = /* @__PURE__ */ struct('TranslucentParams', 112, 16, {
   size: [0, u32],
   count: [4, u32],
   seed: [8, u32],
@@ -345,7 +345,7 @@ const TranslucentParams = struct('TranslucentParams', 112, 16, {
   lightU: [80, vec4f],
   lightV: [96, vec4f],
 });
-const VreRayParams = struct('VreRayParams', 48, 4, {
+const VreRayParams = /* @__PURE__ */ struct('VreRayParams', 48, 4, {
   sigma: [0, f32],
   albedo: [4, f32],
   emission: [8, f32],
