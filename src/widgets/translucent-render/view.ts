@@ -1,0 +1,644 @@
+// The drawing of <sb-translucent-render>: the three pictures (Lambert, BSSRDF with its
+// overlay of irradiance samples or the selected pixel's octree cut, path-traced
+// reference), the path tracer's own controls (continue, cancel, progress) and the ε
+// sweep. The reference runs on its own schedule (steps of about STEP_BUDGET_MS) and
+// writes its rows and the error rows itself; the frame's rows are widget.ts's.
+import type { GpuContext } from '../../gpu/device.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
+import {
+  buildOctree,
+  dipolesOf,
+  gatherCpu,
+  imageError,
+  interiorMask,
+  irradianceSamples,
+  renderDiffuseCpu,
+  renderGatherCpu,
+  visiblePoint,
+  type Octree,
+  type OctreeNode,
+  type TranslucentScene,
+} from '../../subsurface/translucent.ts';
+import { PathAccumulator, TranslucentKernels } from '../../subsurface/translucentKernels.ts';
+import type { Backend } from '../base/backend.ts';
+import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import { imageFigure, imagePanel } from '../base/imagePanel.ts';
+import { SweepControls, type SweepPoint } from '../base/sweep.ts';
+import { timingLabel, type GpuTiming } from '../base/timing.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
+import {
+  epsilonOf,
+  errorAgainstNoisyReference,
+  paintImage,
+  referenceKey,
+  sampleCountOf,
+  sceneFromValues,
+  type NoisyReferenceError,
+} from './model.ts';
+import type { TranslucentFrame } from './widget.ts';
+
+/** A progressive step of the path tracer aims at this much GPU time. */
+const STEP_BUDGET_MS = 120;
+/** Largest image side the CPU fallback draws. */
+const CPU_SIZE = 40;
+
+const percent = (x: number): string =>
+  Number.isFinite(x) ? `${x >= 0 ? '+' : '−'}${formatNumber(Math.abs(100 * x), 3)}%` : '—';
+/**
+ * An error against the path-traced reference, its noise variance subtracted (model.ts,
+ * errorAgainstNoisyReference). While the subtracted noise is not small next to the error
+ * (over ¼ of it) the estimate is itself noisy, so it is marked ≈ and the noise that was
+ * subtracted is named; the label says "noise-corrected".
+ */
+const errorText = (e: NoisyReferenceError | null): string => {
+  if (!e) return '— (no reference yet)';
+  const noise = `±${formatNumber(100 * e.referenceNoise, 2)}%`;
+  if (e.belowNoise) return `below the reference noise (${noise}) · ${percent(e.meanError)}`;
+  const young = e.referenceNoise > e.relativeRmse / 4;
+  const value = `${formatNumber(100 * e.relativeRmse, 3)}% · ${percent(e.meanError)}`;
+  return young ? `≈ ${value} (ref. noise ${noise})` : value;
+};
+
+interface OctreeState {
+  key: string;
+  octree: Octree;
+  buildMs: number;
+}
+
+interface ReferenceState {
+  key: string;
+  accumulator: PathAccumulator;
+  target: number;
+  timing: string;
+}
+
+interface Pictures {
+  diffuse: Float32Array;
+  gather: { image: Float32Array; visited: Float32Array; exact: Float32Array | null };
+}
+
+export function createView(
+  context: ViewContext<TranslucentKernels>,
+): WidgetView<TranslucentFrame, TranslucentKernels> {
+  const canvas = (label: string) => {
+    const managed = context.canvas({ width: 64, height: 64 });
+    managed.element.setAttribute('aria-label', label);
+    return managed;
+  };
+  const canvases = [
+    canvas('The sphere as a Lambertian surface'),
+    canvas('The sphere with the dipole BSSRDF, Jensen–Buhler gather'),
+    canvas('The sphere by volumetric path tracing (reference)'),
+  ] as const;
+  const set = (key: string, text: string, state?: 'ok' | 'bad'): void =>
+    context.setReadout(key, text, state);
+
+  let overlay: SVGSVGElement | null = null;
+  let sweep: SweepControls | null = null;
+  let runButton: HTMLButtonElement | null = null;
+  let cancelButton: HTMLButtonElement | null = null;
+  let progress: HTMLProgressElement | null = null;
+  let status: HTMLElement | null = null;
+  let octreeState: OctreeState | null = null;
+  let reference: ReferenceState | null = null;
+  let referenceToken = 0;
+  let running = false;
+  /** Whether the last render ran on the CPU twins, where no reference is ever traced. */
+  let cpuOnly = false;
+  let pictures: Pictures | null = null;
+  let scene: TranslucentScene | null = null;
+  let exact: { key: string; image: Float32Array; milliseconds: number } | null = null;
+  /** The selected pixel (column, row) of the BSSRDF picture. */
+  let selected: [number, number] | null = null;
+
+  const octreeFor = (forScene: TranslucentScene, count: number): OctreeState => {
+    const key = [
+      forScene.radius,
+      forScene.eta,
+      ...forScene.toLight,
+      ...forScene.sigmaA,
+      count,
+    ].join('|');
+    if (octreeState?.key === key) return octreeState;
+    const start = performance.now();
+    const octree = buildOctree(irradianceSamples(forScene, count), forScene.radius);
+    octreeState = { key, octree, buildMs: performance.now() - start };
+    return octreeState;
+  };
+
+  const setRunning = (on: boolean): void => {
+    if (cancelButton) cancelButton.disabled = !on;
+    if (runButton) runButton.disabled = on;
+    context.host.toggleAttribute('data-path-tracing', on);
+  };
+
+  const cancelReference = (message: string): void => {
+    referenceToken += 1;
+    if (running && status) status.textContent = `Path tracing ${message}.`;
+    running = false;
+    setRunning(false);
+  };
+
+  /** The selected pixel in the three pictures, with the reference's standard error there. */
+  const showPixelValues = (p: number): void => {
+    const average = (image: ArrayLike<number> | null | undefined): number =>
+      image ? (image[3 * p]! + image[3 * p + 1]! + image[3 * p + 2]!) / 3 : NaN;
+    const acc = reference?.accumulator;
+    const pixels = (scene?.size ?? 0) ** 2;
+    let value = '—';
+    if (acc && acc.samples > 1 && acc.pixels === pixels) {
+      const se = acc.standardError();
+      const seMean = Math.hypot(se[3 * p]!, se[3 * p + 1]!, se[3 * p + 2]!) / 3;
+      value = `${formatNumber(average(acc.mean()), 3)} ± ${formatNumber(seMean, 2)}`;
+    }
+    set(
+      'pixel-values',
+      `${formatNumber(average(pictures?.diffuse), 3)} · ${formatNumber(average(pictures?.gather.image), 3)} · ${value}`,
+    );
+  };
+
+  /** Paints the reference and updates every error readout from the current accumulation. */
+  const showReference = (): void => {
+    if (!scene) return;
+    const exposure = Number(context.values['exposure']);
+    const mask = interiorMask(scene);
+    const target = canvases[2].element;
+    if (
+      !reference ||
+      reference.accumulator.samples === 0 ||
+      reference.accumulator.pixels !== scene.size * scene.size
+    ) {
+      const blank = target.getContext('2d');
+      if (blank) {
+        target.width = scene.size;
+        target.height = scene.size;
+        blank.fillStyle = '#000';
+        blank.fillRect(0, 0, scene.size, scene.size);
+      }
+      const missing = cpuOnly ? '— (the reference needs WebGPU)' : errorText(null);
+      set('diffuse-error', missing);
+      set('gather-error', missing);
+      if (!reference) return;
+    }
+    const acc = reference.accumulator;
+    if (acc.samples === 0) return;
+    const mean = acc.mean();
+    const se = acc.standardError();
+    paintImage(target, mean, scene.size, exposure);
+    if (acc.samples < 2) {
+      // One sample per pixel has no standard error, so its noise can be neither
+      // subtracted nor shown: an error against it would be mostly that noise.
+      const young = '— (waiting for a second reference sample per pixel)';
+      set('diffuse-error', young);
+      set('gather-error', young);
+    } else if (pictures)
+      set('diffuse-error', errorText(errorAgainstNoisyReference(pictures.diffuse, mean, se, mask)));
+    if (acc.samples >= 2 && pictures)
+      set(
+        'gather-error',
+        errorText(errorAgainstNoisyReference(pictures.gather.image, mean, se, mask)),
+      );
+    let squares = 0;
+    let sum = 0;
+    let n = 0;
+    mask.forEach((inside, p) => {
+      if (!inside) return;
+      for (let c = 0; c < 3; c++) {
+        squares += Number.isFinite(se[3 * p + c]!) ? se[3 * p + c]! ** 2 : 0;
+        sum += mean[3 * p + c]!;
+        n += 1;
+      }
+    });
+    set('path-spp', `${acc.samples} of ${reference.target}`);
+    set(
+      'path-time',
+      `${formatMilliseconds(acc.milliseconds)} (${reference.timing ? timingLabel(reference.timing as GpuTiming) : '…'})`,
+    );
+    set(
+      'path-se',
+      acc.samples > 1
+        ? `${formatNumber((100 * Math.sqrt(squares / n)) / (sum / n), 3)}% of the mean`
+        : '—',
+    );
+    set('path-capped', String(acc.capped), acc.capped > 0 ? 'bad' : 'ok');
+    if (selected) showPixelValues(selected[1] * scene.size + selected[0]);
+    if (progress) progress.value = Math.min(acc.samples / reference.target, 1);
+  };
+
+  /** Runs the path tracer until the target, in steps of about STEP_BUDGET_MS, yielding between. */
+  const continueReference = async (): Promise<void> => {
+    const job = reference;
+    if (!job || running) return;
+    const backend = await context.backend();
+    if (backend.kind !== 'gpu') return;
+    const token = ++referenceToken;
+    const current = (): boolean =>
+      token === referenceToken && job === reference && !context.signal.aborted;
+    running = true;
+    setRunning(true);
+    let perStep = 1;
+    try {
+      while (job.accumulator.samples < job.target) {
+        if (!current()) return;
+        if (!scene || scene.size * scene.size !== job.accumulator.pixels) return;
+        const samples = Math.min(perStep, job.target - job.accumulator.samples);
+        const batch = await backend.renderer.pathBatch(scene, {
+          samples,
+          offset: job.accumulator.samples,
+          seed: Number(context.values['seed']),
+        });
+        if (!current()) return;
+        job.accumulator.add(batch);
+        job.timing = batch.timing;
+        // Aim the next step at the budget from this one's time per sample.
+        const perSample = batch.milliseconds / samples;
+        perStep = Math.max(
+          1,
+          Math.min(256, Math.floor(STEP_BUDGET_MS / Math.max(perSample, 1e-3))),
+        );
+        if (status)
+          status.textContent = `Path tracing: ${job.accumulator.samples} of ${job.target} samples per pixel…`;
+        showReference();
+        await new Promise((resolve) => setTimeout(resolve, 0));
+      }
+      if (status)
+        status.textContent = `Path tracing done: ${job.accumulator.samples} samples per pixel.`;
+    } catch (error) {
+      if (status)
+        status.textContent = `Path tracing failed: ${error instanceof Error ? error.message : String(error)}`;
+    } finally {
+      if (token === referenceToken) {
+        running = false;
+        setRunning(false);
+      }
+    }
+  };
+
+  /** The pixel where the light is strongest on the sphere, half-way to its rim. */
+  const defaultPixel = (on: TranslucentScene): [number, number] => {
+    const l = on.toLight;
+    const planar = Math.hypot(l[0], l[1]) || 1;
+    const x = (0.5 * on.radius * l[0]) / planar;
+    const y = (0.5 * on.radius * l[1]) / planar;
+    return [
+      Math.floor(((x / on.view + 1) / 2) * on.size),
+      Math.floor(((1 - y / on.view) / 2) * on.size),
+    ];
+  };
+
+  /** The irradiance samples (coloured by E) or the selected pixel's octree cut, over the BSSRDF picture. */
+  const drawOverlay = (): void => {
+    const svg = overlay;
+    const state = octreeState;
+    if (!svg || !scene || !state) return;
+    const shown = scene;
+    const size = shown.size;
+    svg.setAttribute('viewBox', `0 0 ${size} ${size}`);
+    svg.replaceChildren();
+    const toPixel = (p: readonly number[]): [number, number] => [
+      ((p[0]! / shown.view + 1) / 2) * size,
+      ((1 - p[1]! / shown.view) / 2) * size,
+    ];
+    const circle = (x: number, y: number, r: number, cls: string, fill?: string): void => {
+      const c = document.createElementNS('http://www.w3.org/2000/svg', 'circle');
+      c.setAttribute('cx', x.toFixed(2));
+      c.setAttribute('cy', y.toFixed(2));
+      c.setAttribute('r', r.toFixed(2));
+      c.setAttribute('class', cls);
+      if (fill) c.setAttribute('fill', fill);
+      svg.appendChild(c);
+    };
+    const mode = String(context.values['overlay']);
+    const { samples } = state.octree;
+    if (mode === 'samples') {
+      let largest = 0;
+      samples.irradiance.forEach((e) => (largest = Math.max(largest, e)));
+      for (let k = 0; k < samples.count; k++) {
+        const z = samples.positions[3 * k + 2]!;
+        if (z <= 0) continue; // the far side is hidden
+        const [x, y] = toPixel([samples.positions[3 * k]!, samples.positions[3 * k + 1]!]);
+        const e = samples.irradiance[k]! / (largest || 1);
+        circle(
+          x,
+          y,
+          Math.max(0.35, size / 220),
+          'sb-tr-sample',
+          `rgb(${Math.round(40 + 215 * e)}, ${Math.round(60 + 160 * e)}, ${Math.round(200 - 170 * e)})`,
+        );
+      }
+      set('pixel', `${samples.count} samples (dots, colour = E; far side hidden)`);
+      return;
+    }
+    const [i, j] = selected ?? defaultPixel(shown);
+    selected = [i, j];
+    const x = visiblePoint(shown, i, j);
+    if (!x) {
+      set('pixel', `(${i}, ${j}) is off the sphere`);
+      circle(i + 0.5, j + 0.5, 1.2, 'sb-tr-pixel');
+      return;
+    }
+    const cut: OctreeNode[] = [];
+    const result = gatherCpu(state.octree, dipolesOf(shown), x, epsilonOf(context.values), cut);
+    const leafTerms = result.terms - cut.length;
+    if (mode === 'cut') {
+      for (const node of cut) {
+        if (node.centroid[2] <= 0) continue;
+        const [cx, cy] = toPixel(node.centroid);
+        const r = (Math.sqrt(node.area / Math.PI) / (2 * shown.view)) * size;
+        circle(cx, cy, r, 'sb-tr-node');
+      }
+    }
+    circle(i + 0.5, j + 0.5, Math.max(1.2, size / 60), 'sb-tr-pixel');
+    set(
+      'pixel',
+      `(${i}, ${j}): ${result.visited} nodes visited · ${cut.length} whole + ${leafTerms} single samples`,
+    );
+    context.host.dataset['pixelVisited'] = String(result.visited);
+    showPixelValues(j * size + i);
+  };
+
+  const selectPixel = (i: number, j: number): void => {
+    const size = scene?.size ?? 64;
+    selected = [Math.min(Math.max(i, 0), size - 1), Math.min(Math.max(j, 0), size - 1)];
+    drawOverlay();
+  };
+
+  /**
+   * What both backends share after their pictures: paint them, start or extend the
+   * reference on the GPU (or say it needs WebGPU), redraw the reference and the overlay.
+   */
+  const finishFrame = (
+    shown: TranslucentScene,
+    state: OctreeState,
+    drawn: Pictures,
+    frame: Omit<TranslucentFrame, 'size' | 'octree' | 'meanVisited' | 'exact'>,
+    exactMs: number | null,
+  ): TranslucentFrame => {
+    pictures = drawn;
+    const exposure = Number(context.values['exposure']);
+    paintImage(canvases[0].element, drawn.diffuse, shown.size, exposure);
+    paintImage(canvases[1].element, drawn.gather.image, shown.size, exposure);
+    const mask = interiorMask(shown);
+    let visitedSum = 0;
+    let visitedCount = 0;
+    mask.forEach((inside, p) => {
+      if (!inside) return;
+      visitedSum += drawn.gather.visited[p]!;
+      visitedCount += 1;
+    });
+    const exactImage = drawn.gather.exact;
+    const result: TranslucentFrame = {
+      ...frame,
+      size: shown.size,
+      octree: {
+        samples: state.octree.samples.count,
+        nodes: state.octree.nodes.length,
+        buildMs: state.buildMs,
+      },
+      meanVisited: visitedSum / Math.max(visitedCount, 1),
+      exact:
+        exactImage && exactMs !== null
+          ? {
+              milliseconds: exactMs,
+              relativeRmse: imageError(drawn.gather.image, exactImage, mask).relativeRmse,
+            }
+          : null,
+    };
+
+    if (!cpuOnly) {
+      const key = referenceKey(context.values);
+      const target = 2 ** Number(context.values['spp']);
+      if (reference?.key !== key) {
+        cancelReference('restarted');
+        reference = {
+          key,
+          accumulator: new PathAccumulator(shown.size * shown.size),
+          target,
+          timing: '',
+        };
+        void continueReference();
+      } else if (reference.target !== target) {
+        reference.target = target;
+        if (!running && reference.accumulator.samples < target) void continueReference();
+      }
+    } else {
+      set('path-spp', 'needs WebGPU');
+      if (status) status.textContent = 'The path-traced reference needs WebGPU.';
+      if (runButton) runButton.disabled = true;
+    }
+    showReference();
+    drawOverlay();
+    return result;
+  };
+
+  const runSweep = async (): Promise<void> => {
+    await sweep?.runSeries(async () => {
+      const backend: Backend<TranslucentKernels> = await context.backend();
+      const swept = scene ?? sceneFromValues(context.values);
+      const state = octreeFor(swept, sampleCountOf(context.values));
+      const mask = interiorMask(swept);
+      const direct =
+        backend.kind === 'gpu'
+          ? (await backend.renderer.gather(swept, state.octree, 0)).image
+          : renderGatherCpu(swept, state.octree, 0).image;
+      const measure = async (
+        inverse: number,
+      ): Promise<{ image: Float32Array; milliseconds: number }> => {
+        if (backend.kind === 'gpu')
+          return backend.renderer.gather(swept, state.octree, 1 / inverse);
+        const start = performance.now();
+        const image = renderGatherCpu(swept, state.octree, 1 / inverse).image;
+        return { image, milliseconds: performance.now() - start };
+      };
+      const cache = new Map<number, { image: Float32Array; milliseconds: number }>();
+      const run = async (
+        inverse: number,
+      ): Promise<{ image: Float32Array; milliseconds: number }> => {
+        let r = cache.get(inverse);
+        if (!r) {
+          r = await measure(inverse);
+          cache.set(inverse, r);
+        }
+        return r;
+      };
+      return {
+        series: [
+          { label: 'vs direct sum (ε = 0)', color: '#3d6fd6' },
+          { label: 'vs path-traced reference', color: '#d9473f', dash: [6, 4] },
+        ],
+        measure: async (series: number, inverse: number): Promise<Omit<SweepPoint, 'n'>> => {
+          const r = await run(inverse);
+          if (series === 0)
+            return {
+              rmse: imageError(r.image, direct, mask).relativeRmse,
+              milliseconds: r.milliseconds,
+            };
+          // Against the reference, as in the readouts: its noise variance subtracted.
+          const acc = reference?.accumulator;
+          const error =
+            acc && acc.samples > 0 && acc.pixels === swept.size ** 2
+              ? errorAgainstNoisyReference(r.image, acc.mean(), acc.standardError(), mask)
+                  .relativeRmse
+              : NaN;
+          return { rmse: error, milliseconds: r.milliseconds };
+        },
+        finish: (points: readonly (readonly SweepPoint[])[]) => {
+          const first = points[0]?.[0];
+          const last = points[0]?.at(-1);
+          return first && last
+            ? `ε = 1: ${formatNumber(100 * first.rmse, 3)}% in ${formatMilliseconds(first.milliseconds)}; ε = 1/256: ${formatNumber(100 * last.rmse, 3)}% in ${formatMilliseconds(last.milliseconds)}`
+            : 'no points';
+        },
+        failed: () => undefined,
+      };
+    });
+  };
+
+  /** The scene of this frame and its octree (the CPU draws a smaller image). */
+  const prepare = (onCpu: boolean): { shown: TranslucentScene; state: OctreeState } => {
+    const shown = sceneFromValues(context.values);
+    cpuOnly = onCpu;
+    if (onCpu) shown.size = Math.min(shown.size, CPU_SIZE);
+    scene = shown;
+    return { shown, state: octreeFor(shown, sampleCountOf(context.values)) };
+  };
+
+  return {
+    // A getter: the notice names the size the CPU drew at (the base reads it after renderCpu).
+    get cpuNotice() {
+      return `Showing the float64 twins of the Lambertian and BSSRDF pictures at ${scene?.size ?? CPU_SIZE}² pixels; the path-traced reference needs WebGPU and is not run.`;
+    },
+    build(stage) {
+      const diffuse = imagePanel(canvases[0].element, 'Lambert, albedo = dipole Rd');
+      const bssrdf = imagePanel(canvases[1].element, 'Dipole BSSRDF, octree gather');
+      const path = imagePanel(canvases[2].element, 'Path tracing (reference)');
+      // The BSSRDF picture holds an SVG overlay (samples or cut) and takes clicks and arrow keys.
+      const holder = document.createElement('div');
+      holder.className = 'sb-tr-holder';
+      holder.tabIndex = 0;
+      holder.setAttribute('role', 'group');
+      holder.setAttribute(
+        'aria-label',
+        'Dipole BSSRDF picture: click a pixel or use the arrow keys to show the octree cut that pixel uses',
+      );
+      overlay = document.createElementNS('http://www.w3.org/2000/svg', 'svg');
+      overlay.classList.add('sb-tr-overlay');
+      overlay.setAttribute('aria-hidden', 'true');
+      bssrdf.panel.insertBefore(holder, bssrdf.panel.firstChild);
+      holder.append(canvases[1].element, overlay);
+      holder.addEventListener('click', (event) => {
+        const rect = holder.getBoundingClientRect();
+        const size = scene?.size ?? 64;
+        const i = Math.floor(((event.clientX - rect.left) / rect.width) * size);
+        const j = Math.floor(((event.clientY - rect.top) / rect.height) * size);
+        selectPixel(i, j);
+      });
+      holder.addEventListener('keydown', (event) => {
+        const step: Record<string, [number, number]> = {
+          ArrowLeft: [-1, 0],
+          ArrowRight: [1, 0],
+          ArrowUp: [0, -1],
+          ArrowDown: [0, 1],
+        };
+        const move = step[event.key];
+        if (!move) return;
+        event.preventDefault();
+        const size = scene?.size ?? 64;
+        const [i, j] = selected ?? [Math.floor(size / 2), Math.floor(size / 2)];
+        const stride = event.shiftKey ? 8 : 1;
+        selectPixel(i + stride * move[0], j + stride * move[1]);
+      });
+      stage.appendChild(imageFigure(diffuse.panel, bssrdf.panel, path.panel));
+
+      const controls = document.createElement('div');
+      controls.className = 'sb-sweep sb-tr-path';
+      runButton = document.createElement('button');
+      runButton.type = 'button';
+      runButton.className = 'sb-button';
+      runButton.textContent = 'Continue path tracing';
+      runButton.addEventListener('click', () => void continueReference());
+      cancelButton = document.createElement('button');
+      cancelButton.type = 'button';
+      cancelButton.className = 'sb-button';
+      cancelButton.textContent = 'Cancel';
+      cancelButton.disabled = true;
+      cancelButton.addEventListener('click', () => cancelReference('cancelled'));
+      progress = document.createElement('progress');
+      progress.max = 1;
+      progress.value = 0;
+      progress.setAttribute('aria-label', 'Path tracing progress');
+      status = document.createElement('span');
+      status.className = 'sb-tr-status';
+      status.setAttribute('role', 'status');
+      controls.append(runButton, cancelButton, progress, status);
+      stage.appendChild(controls);
+
+      sweep = new SweepControls(
+        stage,
+        context.host,
+        {
+          name: '1/ε',
+          buttonText: 'Sweep ε',
+          hint: 'Sweep ε from 1 to 1/256: the gather’s error against the direct sum (ε = 0) falls as its time grows, while its error against the path-traced reference levels off at the dipole’s own model error.',
+          color: '#3d6fd6',
+          points: [1, 2, 4, 8, 16, 32, 64, 128, 256],
+          errorName: 'relative RMSE',
+        },
+        () => void runSweep(),
+      );
+    },
+    createRenderer: (gpu: GpuContext) => new TranslucentKernels(gpu.device, STATIC_KERNELS),
+    async renderGpu(renderer) {
+      const { shown, state } = prepare(false);
+      const epsilon = epsilonOf(context.values);
+      const diffuse = await renderer.diffuse(shown);
+      const gather = await renderer.gather(shown, state.octree, epsilon);
+      // The direct sum does not depend on ε: computed once per octree and image size.
+      const exactKey = `${state.key}|${shown.size}`;
+      if (exact?.key !== exactKey)
+        exact = { key: exactKey, ...(await renderer.gather(shown, state.octree, 0)) };
+      return finishFrame(
+        shown,
+        state,
+        {
+          diffuse: diffuse.image,
+          gather: { image: gather.image, visited: gather.visited, exact: exact.image },
+        },
+        {
+          epsilon,
+          diffuse: { milliseconds: diffuse.milliseconds, timing: diffuse.timing as GpuTiming },
+          gather: { milliseconds: gather.milliseconds, timing: gather.timing as GpuTiming },
+        },
+        exact.milliseconds,
+      );
+    },
+    renderCpu() {
+      const { shown, state } = prepare(true);
+      const epsilon = epsilonOf(context.values);
+      const start = performance.now();
+      const diffuse = renderDiffuseCpu(shown);
+      const middle = performance.now();
+      const gather = renderGatherCpu(shown, state.octree, epsilon);
+      const end = performance.now();
+      return finishFrame(
+        shown,
+        state,
+        { diffuse, gather: { image: gather.image, visited: gather.visited, exact: null } },
+        {
+          epsilon,
+          diffuse: { milliseconds: middle - start, timing: 'cpu' },
+          gather: { milliseconds: end - middle, timing: 'cpu' },
+        },
+        null,
+      );
+    },
+    onCpuFallback(reason) {
+      cancelReference(`stopped: ${reason}`);
+      sweep?.cancel('stopped: the GPU was lost');
+    },
+    destroy() {
+      cancelReference('stopped');
+      sweep?.cancel('stopped');
+    },
+  };
+}
