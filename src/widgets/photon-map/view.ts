@@ -1,0 +1,388 @@
+// The drawing of <sb-photon-map>: the stored photons projected into the camera, the
+// photon-mapped and the equal-time path-traced images (grey, square-root scale with a
+// labelled top), and the error-vs-time sweep, which writes its own three rows.
+// Readouts, backends and fallback: widget.ts and the base element.
+import type { GpuContext } from '../../gpu/device.ts';
+import { linkLibraryKernel } from '../../gpu/link.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
+import type { Backend } from '../base/backend.ts';
+import { formatNumber } from '../base/format.ts';
+import { imageCanvas, imageFigure, imagePanel, niceScale } from '../base/imagePanel.ts';
+import { siteUrl } from '../base/siteUrl.ts';
+import { SweepControls, type SweepPoint } from '../base/sweep.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
+import { pathTraceGpu, renderPhotonMapGpu } from './gpuBackend.ts';
+import {
+  CPU_SIZE,
+  DEFAULT_INPUTS,
+  GPU_SIZE,
+  SCENE,
+  add,
+  buildGridCpu,
+  cameraFrame,
+  dot,
+  downsample,
+  gridFor,
+  parseReference,
+  pathTraceCpu,
+  photonMapImageCpu,
+  progressiveRadius,
+  rmse,
+  scale,
+  sub,
+  tracePhotonsCpu,
+  type PhotonInputs,
+  type PhotonReference,
+} from './model.ts';
+import { summariseSweep } from './summary.ts';
+import { CPU_MAX_PHOTONS, SWEEP_ROWS, type PhotonFrame, type PhotonImages } from './widget.ts';
+
+const VIEW_SIZE = { width: 256, height: 192 } as const;
+const VIEW_PHOTONS = 16384;
+const PT_PASS_SPP = 4;
+/** The photon-map image's jittered rays per pixel. */
+const GATHER_SAMPLES = 1;
+/** Paths per pixel the CPU path tracer stops at even if it has time left. */
+const CPU_MAX_SPP = 4096;
+const SWEEP_POINTS = [1, 2, 4, 8, 16, 32, 64] as const;
+/** Mid-tone colours that read on the light and the dark page; the progressive curve is also dashed. */
+const COLOURS = { pm: '#d9822b', ppm: '#9b72e0', pt: '#5b8def' } as const;
+/** Photons per sweep step: N = SWEEP_PHOTONS·n. */
+const SWEEP_PHOTONS = 4096;
+const REFERENCE_NOTE = `${GPU_SIZE.width}×${GPU_SIZE.height}, precomputed (scripts/photon-map-reference.ts)`;
+
+export function inputsFrom(values: Record<string, number | string>): PhotonInputs {
+  return {
+    ...DEFAULT_INPUTS,
+    photons: Math.round(Number(values['photons'] ?? DEFAULT_INPUTS.photons)),
+    radius: Number(values['radius'] ?? DEFAULT_INPUTS.radius),
+  };
+}
+
+export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonFrame, GpuContext> {
+  // 2D canvases on either backend (the GPU work reads back into them), so never swapped.
+  const viewCanvas = imageCanvas(
+    'Stored photons projected into the camera',
+    VIEW_SIZE.width,
+    VIEW_SIZE.height,
+  );
+  viewCanvas.dataset['view'] = 'photons';
+  const pmCanvas = imageCanvas('Photon-mapped image', GPU_SIZE.width, GPU_SIZE.height);
+  pmCanvas.dataset['view'] = 'photon-map';
+  const ptCanvas = imageCanvas('Path-traced image in equal time', GPU_SIZE.width, GPU_SIZE.height);
+  ptCanvas.dataset['view'] = 'path-trace';
+  let scaleTop: HTMLElement | null = null;
+  let sweep: SweepControls | null = null;
+  let reference: Promise<PhotonReference> | null = null;
+  let code: Promise<string> | null = null;
+
+  const loadReference = (): Promise<PhotonReference> => {
+    reference ??= (async () => {
+      const response = await fetch(siteUrl('photon-map/reference.bin'));
+      if (!response.ok) throw new Error(`reference: HTTP ${response.status}`);
+      return parseReference(await response.arrayBuffer());
+    })();
+    return reference;
+  };
+
+  const kernel = (): Promise<string> => {
+    code ??= linkLibraryKernel(STATIC_KERNELS, 'kernels/photon-map.wesl');
+    return code;
+  };
+
+  /** Photon map at the inputs, then path tracing until it has used as much time. */
+  const renderBoth = async (
+    backend: Backend<GpuContext>,
+    inputs: PhotonInputs,
+    ptSppTarget?: number,
+    cpuPhotonCap = CPU_MAX_PHOTONS,
+  ): Promise<PhotonImages> => {
+    const ref = await loadReference();
+    if (backend.kind === 'gpu') {
+      const device = backend.gpu.device;
+      const linked = await kernel();
+      const { width, height } = GPU_SIZE;
+      const pm = await renderPhotonMapGpu(device, linked, inputs, width, height, GATHER_SAMPLES, {
+        viewCount: VIEW_PHOTONS,
+      });
+      const sum = new Float64Array(width * height);
+      let ptMs = 0;
+      let spp = 0;
+      for (let pass = 0; ; pass++) {
+        const r = await pathTraceGpu(
+          device,
+          linked,
+          inputs,
+          width,
+          height,
+          PT_PASS_SPP,
+          inputs.seed + 7919 * pass,
+        );
+        for (let i = 0; i < sum.length; i++) sum[i]! += r.sum[i]!;
+        ptMs += r.milliseconds;
+        spp += PT_PASS_SPP;
+        if (ptSppTarget !== undefined ? spp >= ptSppTarget : ptMs >= pm.milliseconds) break;
+      }
+      return {
+        width,
+        height,
+        photonMap: Float64Array.from(pm.image),
+        pathTraced: sum.map((s) => s / spp),
+        pmMs: pm.milliseconds,
+        ptMs,
+        ptSpp: spp,
+        stored: pm.stored,
+        overflow: pm.overflow,
+        view: pm.view,
+        timing: pm.timing,
+        reference: Float64Array.from(ref.mean),
+      };
+    }
+    const { width, height } = CPU_SIZE;
+    const cpuInputs = { ...inputs, photons: Math.min(inputs.photons, cpuPhotonCap) };
+    const start = performance.now();
+    const set = tracePhotonsCpu(cpuInputs);
+    const sorted = buildGridCpu(set, gridFor(cpuInputs.radius));
+    const image = photonMapImageCpu(
+      cpuInputs,
+      set,
+      sorted,
+      width,
+      height,
+      GATHER_SAMPLES,
+      inputs.seed,
+    );
+    const pmMs = performance.now() - start;
+    const sum = new Float64Array(width * height);
+    let ptMs = 0;
+    let spp = 0;
+    for (let pass = 0; ; pass++) {
+      const t0 = performance.now();
+      const r = pathTraceCpu(cpuInputs, width, height, 1, inputs.seed + 7919 * pass);
+      ptMs += performance.now() - t0;
+      for (let i = 0; i < sum.length; i++) sum[i]! += r.sum[i]!;
+      spp += 1;
+      if (ptSppTarget !== undefined ? spp >= ptSppTarget : ptMs >= pmMs || spp >= CPU_MAX_SPP)
+        break;
+    }
+    const view = new Float32Array(Math.min(set.count, VIEW_PHOTONS) * 4);
+    for (let i = 0; i < view.length / 4; i++) {
+      view.set(
+        [
+          set.positions[3 * i]!,
+          set.positions[3 * i + 1]!,
+          set.positions[3 * i + 2]!,
+          set.glass[i]!,
+        ],
+        4 * i,
+      );
+    }
+    return {
+      width,
+      height,
+      photonMap: image,
+      pathTraced: sum.map((s) => s / spp),
+      pmMs,
+      ptMs,
+      ptSpp: spp,
+      stored: set.count,
+      overflow: set.overflow,
+      view,
+      timing: 'cpu',
+      reference: downsample(ref.mean, ref.width, ref.height, ref.width / width),
+    };
+  };
+
+  const frameOf = async (backend: Backend<GpuContext>): Promise<PhotonFrame> => {
+    const inputs = inputsFrom(context.values);
+    const images = await renderBoth(backend, inputs);
+    const grid = gridFor(inputs.radius);
+    return {
+      inputs,
+      images,
+      pmError: rmse(images.photonMap, images.reference),
+      ptError: rmse(images.pathTraced, images.reference),
+      grid: { dims: grid.dims, cellSize: grid.cellSize },
+      referenceNote: REFERENCE_NOTE,
+    };
+  };
+
+  const runSweep = (controls: SweepControls): Promise<void> =>
+    controls.runSeries(async () => {
+      const inputs = inputsFrom(context.values);
+      const backend = await context.backend();
+      for (const key of SWEEP_ROWS) context.setReadout(key, 'sweeping…');
+      const radiusAt = (photons: number): number =>
+        progressiveRadius(inputs.radius, inputs.photons, photons);
+      return {
+        series: [
+          { label: `photon mapping, r = ${formatNumber(inputs.radius, 3)} m`, color: COLOURS.pm },
+          {
+            label: `progressive, r = ${formatNumber(inputs.radius, 3)} m·(N/${inputs.photons})^(−1/7)`,
+            color: COLOURS.ppm,
+            dash: [6, 4],
+          },
+          { label: 'path tracing', color: COLOURS.pt },
+        ],
+        measure: async (series: number, n: number) => {
+          if (series < 2) {
+            // The sweep runs the photon counts it names on the CPU fallback too.
+            const photons = SWEEP_PHOTONS * n;
+            const radius = series === 0 ? inputs.radius : radiusAt(photons);
+            const r = await renderBoth(
+              backend,
+              { ...inputs, photons, radius },
+              PT_PASS_SPP,
+              Infinity,
+            );
+            return { rmse: rmse(r.photonMap, r.reference), milliseconds: r.pmMs };
+          }
+          const r = await renderBoth(
+            backend,
+            { ...inputs, photons: SWEEP_PHOTONS },
+            backend.kind === 'gpu' ? PT_PASS_SPP * n : n,
+          );
+          return { rmse: rmse(r.pathTraced, r.reference), milliseconds: r.ptMs };
+        },
+        finish: (points: readonly (readonly SweepPoint[])[]) => {
+          const summary = summariseSweep(
+            points[0] ?? [],
+            points[1] ?? [],
+            points[2] ?? [],
+            SWEEP_PHOTONS,
+            radiusAt,
+          );
+          context.setReadout('plateau', summary.plateau);
+          context.setReadout('progressive', summary.progressive);
+          context.setReadout('pt-rate', summary.pathTracing);
+          return `photon mapping (fixed and progressive radius) and path tracing, ${backend.kind === 'gpu' ? 'GPU' : 'CPU fallback'}`;
+        },
+        failed: () => {
+          for (const key of SWEEP_ROWS) context.setReadout(key, 'failed', 'bad');
+        },
+      };
+    });
+
+  return {
+    cpuNotice: `Showing the float64 CPU twin at ${CPU_SIZE.width}×${CPU_SIZE.height} pixels with at most ${CPU_MAX_PHOTONS} photons; the reference is the GPU reference averaged 2×2.`,
+    build(stage) {
+      // The images map radiance v to grey √(v/top), so the bar's midpoint is top/4.
+      const greyScale = {
+        gradient: 'linear-gradient(to right, #000, #fff)',
+        low: '0 (square-root scale)',
+        top: { readout: 'radiance-scale' },
+      };
+      const pm = imagePanel(pmCanvas, 'Photon mapping (volume radiance estimate)', greyScale);
+      scaleTop = pm.top;
+      stage.appendChild(
+        imageFigure(
+          imagePanel(
+            viewCanvas,
+            'Stored photons (orange: through the glass; blue: fog only). All carry ΔΦ = E·A/N.',
+          ).panel,
+          pm.panel,
+          imagePanel(ptCanvas, 'Path tracing, same time').panel,
+        ),
+      );
+      const controls = new SweepControls(
+        stage,
+        context.host,
+        {
+          name: 'n',
+          buttonText: 'Run error-vs-time sweep',
+          hint: 'Run the sweep to plot RMSE against time: photon mapping with N = 4096·n photons at the current radius, progressive photon mapping with the radius shrinking as N^(−1/7) from the current N and r, and path tracing with 4·n paths per pixel, n = 1 … 64.',
+          color: COLOURS.pm,
+          points: SWEEP_POINTS,
+        },
+        () => void runSweep(controls),
+      );
+      sweep = controls;
+    },
+    // The GPU functions take the device; the kernel is linked once (kernel()).
+    createRenderer: (gpu: GpuContext) => gpu,
+    renderGpu: (gpu) => frameOf({ kind: 'gpu', gpu, renderer: gpu }),
+    renderCpu: () => frameOf({ kind: 'cpu', reason: '' }),
+    onCpuFallback: () => sweep?.cancel('stopped: the GPU was lost'),
+    destroy: () => sweep?.cancel('stopped'),
+    show({ inputs, images, pmError, ptError }) {
+      const top = niceScale(percentile(images.reference, 0.995));
+      if (scaleTop) scaleTop.textContent = `${formatNumber(top, 2)} W/(m²·sr)`;
+      paintGrey(pmCanvas, images.photonMap, images.width, images.height, top);
+      paintGrey(ptCanvas, images.pathTraced, images.width, images.height, top);
+      paintPhotons(viewCanvas, images.view);
+      pmCanvas.setAttribute(
+        'aria-label',
+        `Photon-mapped image, N = ${inputs.photons}, r = ${formatNumber(inputs.radius, 3)} m, RMSE ${formatNumber(pmError, 3)}`,
+      );
+      ptCanvas.setAttribute(
+        'aria-label',
+        `Path-traced image, ${images.ptSpp} paths per pixel, RMSE ${formatNumber(ptError, 3)}`,
+      );
+    },
+  };
+}
+
+function percentile(values: ArrayLike<number>, q: number): number {
+  const sorted = Array.from(values).sort((a, b) => a - b);
+  return sorted[Math.min(sorted.length - 1, Math.floor(q * sorted.length))] ?? 0;
+}
+
+/** Grey image with a square-root mapping of [0, top] (sRGB-ish, enough to compare). */
+function paintGrey(
+  canvas: HTMLCanvasElement,
+  image: ArrayLike<number>,
+  width: number,
+  height: number,
+  top: number,
+): void {
+  canvas.width = width;
+  canvas.height = height;
+  const context = canvas.getContext('2d');
+  if (!context) return;
+  const data = context.createImageData(width, height);
+  for (let i = 0; i < width * height; i++) {
+    const v = Math.round(255 * Math.sqrt(Math.min(Math.max(image[i]! / top, 0), 1)));
+    data.data.set([v, v, v, 255], 4 * i);
+  }
+  context.putImageData(data, 0, 0);
+}
+
+/** Stored photons as dots, projected with the widget's pinhole camera. */
+function paintPhotons(canvas: HTMLCanvasElement, view: Float32Array): void {
+  const context = canvas.getContext('2d');
+  if (!context) return;
+  const { width, height } = canvas;
+  context.fillStyle = '#000';
+  context.fillRect(0, 0, width, height);
+  const frame = cameraFrame(width, height);
+  const right2 = dot(frame.right, frame.right);
+  const up2 = dot(frame.up, frame.up);
+  // The sphere's outline, for orientation.
+  const centre = project(SCENE.sphereCenter);
+  if (centre) {
+    const edge = project(add(SCENE.sphereCenter, [SCENE.sphereRadius, 0, 0]));
+    if (edge) {
+      context.strokeStyle = '#888';
+      context.beginPath();
+      context.arc(centre[0], centre[1], Math.abs(edge[0] - centre[0]), 0, 2 * Math.PI);
+      context.stroke();
+    }
+  }
+  for (let i = 0; i < view.length / 4; i++) {
+    const p = project([view[4 * i]!, view[4 * i + 1]!, view[4 * i + 2]!]);
+    if (!p) continue;
+    context.fillStyle =
+      view[4 * i + 3]! > 0 ? 'rgba(255, 160, 40, 0.8)' : 'rgba(90, 150, 255, 0.5)';
+    context.fillRect(p[0], p[1], 1, 1);
+  }
+
+  function project(point: readonly [number, number, number]): [number, number] | null {
+    const d = sub(point, SCENE.cameraPosition);
+    const z = dot(d, frame.forward);
+    if (!(z > 0)) return null;
+    const q = scale(d, 1 / z);
+    const nx = dot(q, frame.right) / right2;
+    const ny = dot(q, frame.up) / up2;
+    return [((nx + 1) / 2) * width, ((1 - ny) / 2) * height];
+  }
+}
