@@ -97,14 +97,19 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   );
   private renderer: unknown = null;
 
+  /** The children the element had before its first shell (see ViewContext.content). */
+  private content: readonly Element[] | null = null;
+
   override connectedCallback(): void {
     if (this.releaseTimer !== null) clearTimeout(this.releaseTimer);
     this.releaseTimer = null;
+    this.content ??= [...this.children];
     super.connectedCallback();
   }
 
   override disconnectedCallback(): void {
     super.disconnectedCallback();
+    this.view?.onDisconnected?.();
     if (this.releaseTimer !== null) clearTimeout(this.releaseTimer);
     this.releaseTimer = setTimeout(() => {
       this.releaseTimer = null;
@@ -140,7 +145,14 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       area,
       rows.map((row) => [row.key, row.label] as const),
     );
+    for (const row of rows) if (row.initial !== undefined) this.readouts.set(row.key, row.initial);
     this.view?.buildReadoutExtras?.(area);
+  }
+
+  /** A reader's input through a control, then the view's linked parameters (valueChanged). */
+  protected override setValue(name: string, raw: string): void {
+    super.setValue(name, raw);
+    this.view?.valueChanged?.(name);
   }
 
   protected override async drawForPrint(): Promise<void> {
@@ -160,12 +172,25 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       get signal() {
         return element.aborter.signal;
       },
+      host: this,
+      backend: () => this.backends.choose(),
+      useCpu: (reason) => this.fallBackToCpu(reason),
+      setReadout: (key, text, state) => this.readouts?.set(key, text, state),
+      setCost: (text) => {
+        if (this.readouts) this.readouts.cost.textContent = text;
+      },
+      recordFrameCost: (milliseconds, timer) => this.recordFrameCost(milliseconds, timer),
+      cpuFallbackNotice: (reason, what) => this.showCpuFallbackNotice(reason, what),
+      get content() {
+        return element.content ?? [];
+      },
       canvas: (options) => {
         const canvas = new Canvas(options);
         this.canvases.push(canvas);
         return canvas;
       },
       scheduleRender: () => this.scheduleRender(),
+      setValue: (name, raw) => super.setValue(name, raw),
       report: (frame, backend) => this.report(frame as Frame, backend),
       showNotice: (key, kind, message, timeoutMs) => this.showNotice(key, kind, message, timeoutMs),
       clearNotice: (key) => this.clearNotice(key),
@@ -186,6 +211,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
 
   /** After a device loss or a failed GPU frame: fresh canvases and the CPU twin, for good. */
   private fallBackToCpu(reason: string): void {
+    this.view?.onCpuFallback?.(reason);
     this.releaseRenderer();
     for (const canvas of this.canvases) canvas.replaceIfWebGpu();
     this.backends.useCpu(reason);
@@ -195,6 +221,11 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   protected async render(): Promise<void> {
     const view = this.view;
     if (!view) return;
+    if (view.renderWithoutBackend) {
+      const frame = await view.renderWithoutBackend();
+      if (frame !== null) this.report(frame, { kind: 'cpu', reason: 'no backend' });
+      return;
+    }
     const backend: Backend<unknown> = await this.backends.choose();
     if (backend.kind === 'gpu' && view.renderGpu) {
       let frame: Frame | null;
@@ -213,8 +244,9 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       return;
     }
     const reason = backend.kind === 'cpu' ? backend.reason : 'this figure draws on the CPU';
-    const frame = await view.renderCpu();
-    this.showCpuFallbackNotice(reason, view.cpuNotice);
+    // Said before drawing: a CPU frame can be a long job (the comparison of estimators).
+    this.showCpuFallbackNotice(reason, view.cpuNotice ?? '');
+    const frame = (await view.renderCpu?.()) ?? null;
     if (frame !== null) this.report(frame, { kind: 'cpu', reason });
   }
 
@@ -223,17 +255,21 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     const readouts: Readouts<Frame> | undefined = this.definition.readouts;
     if (readouts) {
       for (const row of readouts.rows) {
+        if (!row.format) continue;
         const value = row.format(frame, backend);
         if (typeof value === 'string') this.readouts?.set(row.key, value);
         else this.readouts?.set(row.key, value.text, value.state);
       }
-      const cost = readouts.cost(frame);
-      const how = timingLabel(cost.timing);
-      this.recordFrameCost(cost.milliseconds, how);
-      const where =
-        backend.kind === 'gpu' ? `WebGPU (${backend.adapterDescription})` : 'CPU fallback';
-      if (this.readouts)
-        this.readouts.cost.textContent = `${where}: ${readouts.costLine(frame, how, backend)}`;
+      const cost = readouts.cost?.(frame);
+      if (cost) {
+        const how = timingLabel(cost.timing);
+        this.recordFrameCost(cost.milliseconds, how);
+        const where =
+          backend.kind === 'gpu' ? `WebGPU (${backend.adapterDescription})` : 'CPU fallback';
+        const line = readouts.costLine?.(frame, how, backend);
+        if (this.readouts && line !== undefined)
+          this.readouts.cost.textContent = `${where}: ${line}`;
+      }
     }
     this.view?.show?.(frame, backend);
   }

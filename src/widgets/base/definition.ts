@@ -28,7 +28,13 @@ export interface ReadoutRow<Frame> {
   /** `data-readout` key of the value (tests select rows by it). */
   key: string;
   label: string;
-  format(frame: Frame, backend: FrameBackend): ReadoutValue;
+  /**
+   * The value from each reported frame. Without it the row is the view's to write
+   * (context.setReadout), e.g. the result of a sweep.
+   */
+  format?(frame: Frame, backend: FrameBackend): ReadoutValue;
+  /** Text shown before the first value. */
+  initial?: string;
 }
 
 /** What a frame's main work cost, for the cost line and for `npm run bench`. */
@@ -39,13 +45,16 @@ export interface FrameCost {
 
 export interface Readouts<Frame> {
   rows: readonly ReadoutRow<Frame>[];
-  /** The measured cost of the frame (recorded as data-frame-ms and data-frame-timer). */
-  cost(frame: Frame): FrameCost;
+  /**
+   * The measured cost of the frame (recorded as data-frame-ms and data-frame-timer).
+   * Without it (and costLine) the view records costs and writes the cost line itself.
+   */
+  cost?(frame: Frame): FrameCost;
   /**
    * The cost line after "WebGPU (adapter): " or "CPU fallback: "; `how` says how the
    * time was measured (timingLabel).
    */
-  costLine(frame: Frame, how: string, backend: FrameBackend): string;
+  costLine?(frame: Frame, how: string, backend: FrameBackend): string;
 }
 
 /** A slide of the demo deck (deck.html): the widget with these attributes and a caption. */

@@ -5,6 +5,7 @@
 // backend choice and its fallback, notices, errors, frame cost, readouts and the
 // lifecycle) is the base element's (definedElement.ts).
 import type { GpuContext } from '../../gpu/device.ts';
+import type { Backend } from './backend.ts';
 import type { ParameterValues } from '../parameters.ts';
 import type { FrameBackend } from './definition.ts';
 import type { NoticeKind } from './widgetElement.ts';
@@ -26,13 +27,38 @@ export interface CanvasOptions {
 }
 
 /** What the base element offers a view. */
-export interface ViewContext {
+export interface ViewContext<Renderer = unknown> {
   /** The widget's current, validated parameter values. */
   readonly values: ParameterValues;
+  /** The element (for controls that mark it, e.g. SweepControls' data-sweeping). */
+  readonly host: HTMLElement;
+  /** The backend in use (the same choice render() gets), for the view's own jobs. */
+  backend(): Promise<Backend<Renderer>>;
+  /** Switches to the CPU for good, as a failed GPU frame does (a job's GPU work failed). */
+  useCpu(reason: string): void;
+  /** Writes a readout row the view owns (a row without `format`). */
+  setReadout(key: string, text: string, state?: 'ok' | 'bad'): void;
+  /** Writes the cost line (for a definition whose readouts have no costLine). */
+  setCost(text: string): void;
+  /** Records the cost of work outside frames (data-frame-ms, data-frame-timer). */
+  recordFrameCost(milliseconds: number, timer: string): void;
+  /** The notice "WebGPU is not available (reason). what", for a view that checks WebGPU itself. */
+  cpuFallbackNotice(reason: string, what: string): void;
+  /**
+   * The element's children before the shell replaced them: content the build rendered
+   * inside the tag (the exercise's statement), for the view to place.
+   */
+  readonly content: readonly Element[];
   /** A canvas (role="img") the base can swap for a fresh one when the GPU goes away. */
   canvas(options: CanvasOptions): ManagedCanvas;
   /** Draws again on the next frame while on screen (after the view's own input, or a job step). */
   scheduleRender(): void;
+  /**
+   * Sets a parameter as its control would (validated, shown in the control, saved in the
+   * URL, drawn again), from the view's own input (an editor drag, an orbit). It does not
+   * call the view's `valueChanged`, so a view can set linked parameters from there.
+   */
+  setValue(name: string, raw: string): void;
   /**
    * Fills the readouts and the cost line from a frame outside render(), e.g. from each
    * step of a long job (the escape hatch: render() starts the job and returns null).
@@ -59,16 +85,32 @@ export interface WidgetView<Frame, Renderer = unknown> {
    */
   renderGpu?(renderer: Renderer, gpu: GpuContext): Promise<Frame | null>;
   /** One frame with the float64 CPU twin (no WebGPU, ?backend=cpu, or after a loss). */
-  renderCpu(): Promise<Frame | null> | Frame | null;
+  renderCpu?(): Promise<Frame | null> | Frame | null;
+  /**
+   * For a widget that does not draw with the page's shared device (the exercise grades
+   * on a device of its own and checks WebGPU itself): the base calls this instead of
+   * choosing a backend, and shows no backend notice of its own.
+   */
+  renderWithoutBackend?(): Promise<Frame | null>;
   /** The sentence after "WebGPU is not available (reason)." while drawing on the CPU. */
-  readonly cpuNotice: string;
+  readonly cpuNotice?: string;
   /** Draws what the readouts do not: plots, accessible descriptions of the canvases. */
   show?(frame: Frame, backend: FrameBackend): void;
   /** Draws the parts that draw on their own schedule before printing (see WidgetElement.drawForPrint). */
   drawForPrint?(): Promise<void>;
+  /**
+   * Called after the reader set a parameter through its control (not by a preset or a
+   * link): a view whose parameters are linked sets the others with context.setValue
+   * (e.g. choosing a material fills in its coefficients; editing one makes it "manual").
+   */
+  valueChanged?(name: string): void;
+  /** Called when the widget switches to the CPU (device loss, a failed GPU frame): stop GPU jobs. */
+  onCpuFallback?(reason: string): void;
   /** Releases the GPU renderer's resources (device loss, destroy). */
   destroyRenderer?(renderer: Renderer): void;
-  /** Stops the view's own work when the widget is destroyed (timers, workers). */
+  /** The widget left the page (it may come back: a move); save what must not be lost. */
+  onDisconnected?(): void;
+  /** Stops the view's own work when the widget is destroyed (timers, workers, listeners). */
   destroy?(): void;
 }
 
