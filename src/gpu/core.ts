@@ -145,7 +145,7 @@ export class Lease {
   /** A buffer holding `data` (written through the queue), zero past it up to `bytes`. */
   upload(
     purpose: string,
-    data: ArrayBufferView<ArrayBuffer>,
+    data: ArrayBufferView,
     usage: GPUBufferUsageFlags,
     bytes = data.byteLength,
   ): GPUBuffer {
@@ -200,6 +200,7 @@ export class GpuCore {
   private readonly computePipelines = new LruCache<GPUComputePipeline>(CACHE_LIMIT);
   private readonly asyncComputePipelines = new LruCache<Promise<GPUComputePipeline>>(CACHE_LIMIT);
   private readonly renderPipelines = new LruCache<GPURenderPipeline>(CACHE_LIMIT);
+  private readonly asyncRenderPipelines = new LruCache<Promise<GPURenderPipeline>>(CACHE_LIMIT);
   private readonly bindGroupLayouts = new Map<string, GPUBindGroupLayout>();
   private readonly pipelineLayouts = new Map<string, GPUPipelineLayout>();
   private readonly bindGroups = new WeakMap<
@@ -284,26 +285,52 @@ export class GpuCore {
     };
   }
 
+  private renderKey(request: RenderPipelineRequest): string {
+    // The label names the pipeline in messages only; the first creator's label stays.
+    const { code, layout, ...state } = request;
+    return `${layoutKey(layout)}\n${JSON.stringify({ ...state, label: undefined })}\n${code}`;
+  }
+
+  private renderDescriptor(request: RenderPipelineRequest): GPURenderPipelineDescriptor {
+    const { code, layout, label, ...state } = request;
+    const module = this.shaderModule(code, label);
+    return {
+      ...(label === undefined ? {} : { label }),
+      layout: layout ?? 'auto',
+      vertex: { module, ...state.vertex },
+      ...(state.fragment ? { fragment: { module, ...state.fragment } } : {}),
+      ...(state.primitive ? { primitive: state.primitive } : {}),
+      ...(state.depthStencil ? { depthStencil: state.depthStencil } : {}),
+      ...(state.multisample ? { multisample: state.multisample } : {}),
+    };
+  }
+
   /** A render pipeline, cached by code, layout and every field of the descriptor. */
   renderPipeline(request: RenderPipelineRequest): GPURenderPipeline {
-    const { code, layout, label, ...state } = request;
-    const key = `${layoutKey(layout)}\n${JSON.stringify(state)}\n${code}`;
+    const key = this.renderKey(request);
     let pipeline = this.renderPipelines.get(key);
     if (!pipeline) {
-      const module = this.shaderModule(code, label);
-      const made = this.device.createRenderPipeline({
-        ...(label === undefined ? {} : { label }),
-        layout: layout ?? 'auto',
-        vertex: { module, ...state.vertex },
-        ...(state.fragment ? { fragment: { module, ...state.fragment } } : {}),
-        ...(state.primitive ? { primitive: state.primitive } : {}),
-        ...(state.depthStencil ? { depthStencil: state.depthStencil } : {}),
-        ...(state.multisample ? { multisample: state.multisample } : {}),
-      });
+      const made = this.device.createRenderPipeline(this.renderDescriptor(request));
       pipeline = made;
       this.counts.renderPipelines++;
       this.renderPipelines.set(key, made);
       noteCreated(this.device, { onFailure: () => this.renderPipelines.delete(key, made) });
+    }
+    return pipeline;
+  }
+
+  /** The same, compiled without blocking; a failed compile rejects and is not cached. */
+  renderPipelineAsync(request: RenderPipelineRequest): Promise<GPURenderPipeline> {
+    const key = this.renderKey(request);
+    let pipeline = this.asyncRenderPipelines.get(key);
+    if (!pipeline) {
+      const made = this.device.createRenderPipelineAsync(this.renderDescriptor(request));
+      pipeline = made;
+      this.counts.renderPipelines++;
+      this.asyncRenderPipelines.set(key, made);
+      const forget = (): void => this.asyncRenderPipelines.delete(key, made);
+      made.catch(forget);
+      noteCreated(this.device, { onFailure: forget });
     }
     return pipeline;
   }
