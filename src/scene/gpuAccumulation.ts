@@ -6,6 +6,8 @@
 // command line and the tests read the whole image, once, with readImage. Every buffer
 // is made when the store is made: adding a pass or reducing allocates nothing.
 import { withErrorScopes } from '../gpu/errors.ts';
+import { readStruct, wordsOf, writeStruct } from '../gpu/layout.ts';
+import { sceneAccumulateKernel, sceneStatisticsKernel } from '../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import {
   finishStatistics,
@@ -14,10 +16,14 @@ import {
   type ImageStatistics,
 } from './accumulation.ts';
 
+/** The kernels' structs, laid out from their WGSL declarations. */
+const ACCUMULATE_PARAMS = sceneAccumulateKernel.AccumulateParams;
+const STATISTICS_PARAMS = sceneStatisticsKernel.StatisticsParams;
+const STATISTICS = sceneStatisticsKernel.Statistics;
 /** Bytes per pixel of the moments (struct PixelMoments: mean, lookups, m2, capped). */
-export const MOMENT_BYTES_PER_PIXEL = 32;
+export const MOMENT_BYTES_PER_PIXEL = sceneAccumulateKernel.PixelMoments.size;
 /** Bytes of struct Statistics in scene-statistics.wesl, read back per reduction. */
-export const STATISTICS_BYTES = 64;
+export const STATISTICS_BYTES = STATISTICS.size;
 const ACCUMULATE_KERNEL = 'kernels/scene-accumulate.wesl';
 const STATISTICS_KERNEL = 'kernels/scene-statistics.wesl';
 const ACCUMULATE_WORKGROUP = 64;
@@ -87,8 +93,8 @@ export class GpuAccumulation implements Accumulation {
   private readonly statisticsReadBack: GPUBuffer;
   private readonly statisticsParams: GPUBuffer;
   private readonly accumulateParams: GPUBuffer;
-  private readonly accumulateParamWords = new Uint32Array(4);
-  private readonly statisticsParamWords = new ArrayBuffer(16);
+  private readonly accumulateParamWords = wordsOf(new ArrayBuffer(ACCUMULATE_PARAMS.size));
+  private readonly statisticsParamWords = wordsOf(new ArrayBuffer(STATISTICS_PARAMS.size));
   /** Reduction bind groups per reference buffer (the image itself when there is none). */
   private readonly statisticsGroups = new Map<GPUBuffer, GPUBindGroup>();
   private accumulateGroup: { passOutput: GPUBuffer; group: GPUBindGroup } | null = null;
@@ -121,11 +127,11 @@ export class GpuAccumulation implements Accumulation {
       usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST,
     });
     this.statisticsParams = device.createBuffer({
-      size: 16,
+      size: STATISTICS_PARAMS.size,
       usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
     });
     this.accumulateParams = device.createBuffer({
-      size: 16,
+      size: ACCUMULATE_PARAMS.size,
       usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
     });
   }
@@ -168,10 +174,9 @@ export class GpuAccumulation implements Accumulation {
         }),
       };
     const words = this.accumulateParamWords;
-    words[0] = pixels;
-    words[1] = this.samples;
-    words[2] = samples;
-    this.device.queue.writeBuffer(this.accumulateParams, 0, words);
+    const params = { pixels, samplesBefore: this.samples, samplesInPass: samples };
+    writeStruct(ACCUMULATE_PARAMS, params, words);
+    this.device.queue.writeBuffer(this.accumulateParams, 0, words.u32);
     pass.setPipeline(this.kernels.accumulate);
     pass.setBindGroup(0, this.accumulateGroup.group);
     pass.dispatchWorkgroups(Math.ceil(pixels / ACCUMULATE_WORKGROUP));
@@ -221,11 +226,10 @@ export class GpuAccumulation implements Accumulation {
       });
       this.statisticsGroups.set(other.moments, group);
     }
-    const params = new DataView(this.statisticsParamWords);
-    params.setUint32(0, this.width * this.height, true);
-    params.setFloat32(4, samples, true);
-    params.setFloat32(8, other.samples, true);
-    device.queue.writeBuffer(this.statisticsParams, 0, this.statisticsParamWords);
+    const params = this.statisticsParamWords;
+    const pixels = this.width * this.height;
+    writeStruct(STATISTICS_PARAMS, { pixels, samples, referenceSamples: other.samples }, params);
+    device.queue.writeBuffer(this.statisticsParams, 0, params.u32);
     const encoder = device.createCommandEncoder();
     const pass = encoder.beginComputePass();
     pass.setPipeline(this.kernels.statistics);
@@ -242,22 +246,21 @@ export class GpuAccumulation implements Accumulation {
     device.queue.submit([encoder.finish()]);
     await this.statisticsReadBack.mapAsync(GPUMapMode.READ);
     const range = this.statisticsReadBack.getMappedRange();
-    const f = new Float32Array(range.slice(0));
+    const s = readStruct(STATISTICS, wordsOf(range.slice(0)));
     this.statisticsReadBack.unmap();
-    const u = new Uint32Array(f.buffer);
-    const wide = (low: number, high: number): number => u[high]! * 2 ** 32 + u[low]!;
+    const wide = ([low, high]: [number, number]): number => high * 2 ** 32 + low;
     return finishStatistics(this.width * this.height, samples, {
-      radiance: f[0]!,
-      standardError: f[1]!,
-      standardErrorSq: f[2]!,
-      maxPixelError: f[3]!,
-      maskedLuminance: f[4]!,
-      maskCount: this.maskSet ? f[5]! : 0,
-      squaredDifference: f[6]!,
-      referenceNoise: f[7]!,
-      referenceRadiance: f[8]!,
-      lookups: wide(10, 11),
-      capped: wide(12, 13),
+      radiance: s.radiance,
+      standardError: s.standardError,
+      standardErrorSq: s.standardErrorSq,
+      maxPixelError: s.maxPixelError,
+      maskedLuminance: s.maskedLuminance,
+      maskCount: this.maskSet ? s.maskCount : 0,
+      squaredDifference: s.squaredDifference,
+      referenceNoise: s.referenceNoise,
+      referenceRadiance: s.referenceRadiance,
+      lookups: wide(s.lookups),
+      capped: wide(s.capped),
       hasReference: reference !== undefined,
     });
   }
