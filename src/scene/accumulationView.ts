@@ -3,6 +3,7 @@
 // or the per-pixel standard error in false colour. Nothing is read back; the canvas
 // holds one pixel per image pixel (CSS scales it). Per draw: one 32-byte uniform write
 // and one render pass; the bind group of an accumulation is made once.
+import { gpuCore } from '../gpu/core.ts';
 import { withErrorScopes } from '../gpu/errors.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { keepForPrint } from '../widgets/base/print.ts';
@@ -22,47 +23,32 @@ interface DisplayPipeline {
   pipeline: GPURenderPipeline;
 }
 
-const pipelines = new WeakMap<GPUDevice, Map<GPUTextureFormat, Promise<DisplayPipeline>>>();
-
-function displayPipeline(
+/**
+ * The display pipeline for a canvas format, from the GPU core's cache (the link is
+ * cached by link.ts, the layouts and the pipeline by the core).
+ */
+async function displayPipeline(
   device: GPUDevice,
   library: KernelLibrary,
   format: GPUTextureFormat,
 ): Promise<DisplayPipeline> {
-  let perDevice = pipelines.get(device);
-  if (!perDevice) {
-    perDevice = new Map();
-    pipelines.set(device, perDevice);
-  }
-  let made = perDevice.get(format);
-  if (!made) {
-    made = linkLibraryKernel(library, DISPLAY_KERNEL).then((code) =>
-      withErrorScopes(device, 'accumulation display pipeline', async () => {
-        const visibility = GPUShaderStage.FRAGMENT;
-        const layout = device.createBindGroupLayout({
-          entries: [
-            { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
-            { binding: 1, visibility, buffer: { type: 'uniform' } },
-          ],
-        });
-        const module = device.createShaderModule({ code });
-        const pipeline = await device.createRenderPipelineAsync({
-          layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
-          vertex: { module, entryPoint: 'displayVertex' },
-          fragment: { module, entryPoint: 'displayFragment', targets: [{ format }] },
-          primitive: { topology: 'triangle-list' },
-        });
-        return { layout, pipeline };
-      }),
-    );
-    const cache = perDevice;
-    const entry = made;
-    cache.set(format, entry);
-    entry.catch(() => {
-      if (cache.get(format) === entry) cache.delete(format);
+  const code = await linkLibraryKernel(library, DISPLAY_KERNEL);
+  return withErrorScopes(device, 'accumulation display pipeline', async () => {
+    const core = gpuCore(device);
+    const visibility = GPUShaderStage.FRAGMENT;
+    const layout = core.bindGroupLayout([
+      { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
+      { binding: 1, visibility, buffer: { type: 'uniform' } },
+    ]);
+    const pipeline = await core.renderPipelineAsync({
+      code,
+      layout: core.pipelineLayout([layout]),
+      vertex: { entryPoint: 'displayVertex' },
+      fragment: { entryPoint: 'displayFragment', targets: [{ format }] },
+      primitive: { topology: 'triangle-list' },
     });
-  }
-  return made;
+    return { layout, pipeline };
+  });
 }
 
 const contextKinds = new WeakMap<HTMLCanvasElement, '2d' | 'webgpu'>();
