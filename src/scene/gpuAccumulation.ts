@@ -5,6 +5,7 @@
 // widgets draw the moments straight into a canvas (accumulationView.ts); only the
 // command line and the tests read the whole image, once, with readImage. Every buffer
 // is made when the store is made: adding a pass or reducing allocates nothing.
+import { gpuCore } from '../gpu/core.ts';
 import { withErrorScopes } from '../gpu/errors.ts';
 import { readStruct, wordsOf, writeStruct } from '../gpu/layout.ts';
 import { sceneAccumulateKernel, sceneStatisticsKernel } from '../gpu/layouts.generated.ts';
@@ -51,23 +52,22 @@ function kernelsFor(device: GPUDevice, library: KernelLibrary): Promise<Kernels>
         linkLibraryKernel(library, STATISTICS_KERNEL),
       ]);
       return withErrorScopes(device, 'accumulation kernels', async () => {
-        const accumulateLayout = device.createBindGroupLayout({
-          entries: [storage(0, 'read-only-storage'), storage(1, 'storage'), storage(2, 'uniform')],
-        });
-        const statisticsLayout = device.createBindGroupLayout({
-          entries: [
-            storage(0, 'read-only-storage'),
-            storage(1, 'read-only-storage'),
-            storage(2, 'read-only-storage'),
-            storage(3, 'storage'),
-            storage(4, 'uniform'),
-          ],
-        });
+        // Layouts and pipelines from the GPU core's cache.
+        const core = gpuCore(device);
+        const accumulateLayout = core.bindGroupLayout([
+          storage(0, 'read-only-storage'),
+          storage(1, 'storage'),
+          storage(2, 'uniform'),
+        ]);
+        const statisticsLayout = core.bindGroupLayout([
+          storage(0, 'read-only-storage'),
+          storage(1, 'read-only-storage'),
+          storage(2, 'read-only-storage'),
+          storage(3, 'storage'),
+          storage(4, 'uniform'),
+        ]);
         const pipeline = (code: string, layout: GPUBindGroupLayout, entryPoint: string) =>
-          device.createComputePipelineAsync({
-            layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
-            compute: { module: device.createShaderModule({ code }), entryPoint },
-          });
+          core.computePipelineAsync({ code, entryPoint, layout: core.pipelineLayout([layout]) });
         const [accumulate, statistics] = await Promise.all([
           pipeline(accumulateCode, accumulateLayout, 'accumulatePass'),
           pipeline(statisticsCode, statisticsLayout, 'reduceStatistics'),
