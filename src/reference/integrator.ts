@@ -236,7 +236,7 @@ function decoded(scene: SceneData): NonNullable<SceneData['cache']> {
 }
 
 /** The density grid or its majorant grid (integrator.wesl sceneGrid of that record). */
-export function sceneGridAt(scene: SceneData, which: 'grid' | 'majorant'): DensityGrid {
+export function sceneGrid(scene: SceneData, which: 'grid' | 'majorant'): DensityGrid {
   return decoded(scene).grids[which];
 }
 
@@ -269,7 +269,7 @@ export function mediumSegment(
 export function mediumDensity(scene: SceneData, medium: SceneMedium, p: Vec3): number {
   if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
     scene.stats.lookups += 1;
-    return gridDensityTrilinear(sceneGridAt(scene, 'grid'), scene.density, p);
+    return gridDensityTrilinear(sceneGrid(scene, 'grid'), scene.density, p);
   }
   return 1;
 }
@@ -284,7 +284,7 @@ export function mediumMajorant(
   const sigmaT = maxComponent(add(medium.sigmaA, medium.sigmaS));
   if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
     const majorant = gridMajorantAlongRay(
-      sceneGridAt(scene, 'majorant'),
+      sceneGrid(scene, 'majorant'),
       scene.majorant,
       origin,
       direction,

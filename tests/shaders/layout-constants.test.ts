@@ -21,7 +21,7 @@ import {
   SCENE_MEDIUM_HOMOGENEOUS,
   SCENE_ORDER_UNLIMITED,
   sceneCamera,
-  sceneGridAt,
+  sceneGrid,
   sceneHeader,
   sceneLight,
   sceneMedium,
@@ -215,6 +215,6 @@ describe('the packed scene: one layout for pack.ts, the twin and integrator.wesl
     expect(sceneSurface(data, 0)).toMatchObject({ kind: SURFACE_PLANE, b: [0, 1, 0] });
     expect(sceneSurface(data, 1)).toMatchObject({ kind: SURFACE_SPHERE, radius: 0.25 });
     expect(sceneSurface(data, 2)).toMatchObject({ kind: SURFACE_BOX, a: [2, -1, -1] });
-    expect(sceneGridAt(data, 'grid').dimensions).toEqual([1, 1, 1]);
+    expect(sceneGrid(data, 'grid').dimensions).toEqual([1, 1, 1]);
   });
 });
