@@ -5,6 +5,7 @@
 // with createTexture/writeTexture and binds them through an explicit layout shared by
 // all entry points (one per function), whichever bindings each one uses. The twin*
 // helpers call the float64 twins on the same grids and rays, for the comparisons.
+import { gpuCore } from '../../src/gpu/core.ts';
 import { withErrorScopes } from '../../src/gpu/errors.ts';
 import { linkKernel } from '../../src/gpu/link.ts';
 import {
@@ -140,15 +141,12 @@ async function gridPipelines(device: GPUDevice) {
       ],
     });
     const byEntry = await withErrorScopes(device, 'grid kernel', () => {
-      const module = device.createShaderModule({ code });
-      const pipelineLayout = device.createPipelineLayout({ bindGroupLayouts: [layout] });
+      const core = gpuCore(device);
+      const pipelineLayout = core.pipelineLayout([layout]);
       return new Map(
         Object.keys(OUTPUT_WORDS).map((entryPoint) => [
           entryPoint,
-          device.createComputePipeline({
-            layout: pipelineLayout,
-            compute: { module, entryPoint },
-          }),
+          core.computePipeline({ code, entryPoint, layout: pipelineLayout }),
         ]),
       );
     });

@@ -3,6 +3,7 @@
 // are an r32float 3D texture, which the table harness cannot bind, so this
 // dispatch creates the texture and binds it through an explicit layout (as
 // tests/support/densityGridGpu.ts does for the medium module).
+import { gpuCore } from '../../src/gpu/core.ts';
 import { withErrorScopes } from '../../src/gpu/errors.ts';
 import { linkKernel } from '../../src/gpu/link.ts';
 import type { DensityGridData, Vec3 } from '../../src/reference/medium.ts';
@@ -98,11 +99,9 @@ async function marchPipeline(device: GPUDevice) {
         },
       ],
     });
+    const core = gpuCore(device);
     const made = await withErrorScopes(device, 'volume march kernel', () =>
-      device.createComputePipeline({
-        layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
-        compute: { module: device.createShaderModule({ code }), entryPoint: 'main' },
-      }),
+      core.computePipeline({ code, entryPoint: 'main', layout: core.pipelineLayout([layout]) }),
     );
     return { layout, pipeline: made };
   })();
