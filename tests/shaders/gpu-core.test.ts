@@ -7,7 +7,10 @@ import { afterAll, describe, expect, it } from 'vitest';
 import { runCompute } from '../../src/gpu/compute.ts';
 import { gpuCore } from '../../src/gpu/core.ts';
 import { GpuError, withErrorScopes } from '../../src/gpu/errors.ts';
+import { prefixedDeclarations } from '../../src/gpu/libraryDeclarations.ts';
+import { pcgHash } from '../../src/reference/rng.ts';
 import { nodeDevice, releaseNodeDevice } from '../support/nodeGpu.ts';
+import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 
 afterAll(releaseNodeDevice);
 
@@ -156,5 +159,31 @@ fn main() {
     );
     expect(b).toBe(a);
     expect(c).not.toBe(a);
+  });
+
+  it("takes rng.wesl's pcgHash under a prefix, as the grader's harness does", async () => {
+    const device = await nodeDevice();
+    const hash = prefixedDeclarations(SHADER_LIBRARY, 'rng', ['pcgHash'], 'sbg_');
+    // Its own dependencies come along renamed; nothing else of rng.wesl does.
+    expect(hash).toMatch(/fn sbg_pcgOutput\(/);
+    expect(hash).toMatch(/const sbg_PCG_MULTIPLIER/);
+    expect(hash).not.toMatch(/\bpcgHash\b|rngNextFloat/);
+    // A submission may declare pcgHash itself next to the harness's copy.
+    const code = `${hash}
+fn pcgHash(v: u32) -> u32 { return v; }
+@group(0) @binding(0) var<storage, read> x: array<u32>;
+@group(0) @binding(1) var<storage, read_write> y: array<u32>;
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3u) {
+  if (id.x < arrayLength(&x)) { y[id.x] = sbg_pcgHash(x[id.x]) + pcgHash(0u); }
+}`;
+    const values = [0, 1, 2, 12345, 0xffffffff, 0x80000000];
+    const { output } = await runCompute(device, {
+      code,
+      inputs: [new Uint32Array(values)],
+      outputWords: values.length,
+      workgroups: [1],
+    });
+    expect([...output]).toEqual(values.map((v) => pcgHash(v)));
   });
 });
