@@ -57,9 +57,10 @@ import {
 import { normalCritical } from '../statistics/distributions.ts';
 import type { CheckResult, GradeOptions, GradeOutcome, SourceDiagnostic } from './types.ts';
 import { withEngineNote } from './engineNotes.ts';
+import { DEFAULT_TIMEOUT_MS } from './defaults.ts';
 
 export const DEFAULT_SEED = 20261123;
-export const DEFAULT_TIMEOUT_MS = 20_000;
+export { DEFAULT_TIMEOUT_MS };
 export const DEFAULT_LOOP_BUDGET = 4096;
 const WORKGROUP_SIZE = 64;
 /** Words in front of the arguments in the input buffer: call count, seed. */
