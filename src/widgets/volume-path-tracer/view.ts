@@ -1,0 +1,653 @@
+// The drawing of <sb-volume-path-tracer>: the two progressive images (on WebGPU drawn
+// from the moments on the GPU, src/scene/accumulationView.ts; on the CPU tone-mapped on
+// the host), the pause / restart / reference bar, the log–log error plot with its
+// slope −½ guide, and the plan of each render. The view keeps the run (renderers,
+// accumulations, snapshots) and the cache of references; each render adds one frame of
+// samples and one reference pass, and asks for the next while there is work left.
+// Readouts, cost line, backend choice and fallback: widget.ts and the base element.
+import type { GpuContext } from '../../gpu/device.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
+import type { Accumulation, ImageStatistics } from '../../scene/accumulation.ts';
+import { AccumulationView, canvasForContext } from '../../scene/accumulationView.ts';
+import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
+import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
+import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
+import { toneMapRgba8 } from '../../scene/image.ts';
+import { resolveScene } from '../../scene/load.ts';
+import { packScene, sceneData } from '../../scene/pack.ts';
+import { plan, type Plan } from '../../scene/plan.ts';
+import type { PassRenderer, PassTiming } from '../../scene/render.ts';
+import type { Backend } from '../base/backend.ts';
+import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
+import { LinePlot } from '../base/plot.ts';
+import { logLogSlope, mergeSeries, type SweepPoint } from '../base/sweep.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
+import {
+  CPU_BUDGET,
+  GPU_BUDGET,
+  IMAGE_SEED,
+  REFERENCE_SEED,
+  buildScene,
+  inputsFrom,
+  mediumMask,
+  sceneKey,
+  type Budget,
+  type PathTracerInputs,
+} from './model.ts';
+import {
+  ORDERS,
+  slopeText,
+  type Order,
+  type ReferenceErrors,
+  type VolumePathTracerFrame,
+} from './widget.ts';
+
+/** A frozen copy of an image, and its error once the reference is there. */
+interface Snapshot {
+  samples: number;
+  milliseconds: number;
+  image: Accumulation | null;
+  /** Relative error against the finished reference (NaN: within its noise). */
+  error: number | null;
+}
+
+/** One image being refined: its renderer (which accumulates), cost so far and snapshots. */
+interface Progressive {
+  renderer: PassRenderer;
+  accumulation: Accumulation;
+  milliseconds: number;
+  timing: PassTiming;
+  lastPassMs: number;
+  /** Copies at geometrically spaced spp, for the error plot once the reference exists. */
+  snapshots: Snapshot[];
+}
+
+/** The reference of one parameter set, complete or in progress. */
+interface ReferenceJob {
+  /** Null once done: the renderers are freed and only the accumulations kept. */
+  renderers: Record<Order, PassRenderer> | null;
+  accumulations: Record<Order, Accumulation>;
+  done: boolean;
+  cancelled: boolean;
+  /** Samples per pixel of the next reference pass, sized to REFERENCE_FRAME_MS. */
+  passSpp: number;
+}
+
+/** Everything of one parameter set on one backend. */
+interface Run {
+  key: string;
+  inputs: PathTracerInputs;
+  budget: Budget;
+  backend: 'gpu' | 'cpu';
+  images: Record<Order, Progressive>;
+  plans: Record<Order, Plan>;
+  mask: Uint8Array;
+  reference: ReferenceJob;
+}
+
+const COLOURS: Record<Order, string> = { single: '#d9822b', multiple: '#2b7bb9' };
+const MAX_CACHED_REFERENCES = 8;
+/**
+ * Time one frame's reference pass may take (both orders together): the reference runs
+ * beside the progressive images, and a fixed pass of budget.referencePass spp made
+ * frames of seconds on a CPU WebGPU. Its size adapts to the measured cost per sample.
+ */
+const REFERENCE_FRAME_MS = 120;
+
+/** Frees a cached reference: its renderers while unfinished, else its moments. */
+function destroyReference(job: ReferenceJob): void {
+  if (job.renderers) for (const order of ORDERS) job.renderers[order].destroy();
+  else for (const order of ORDERS) job.accumulations[order].destroy();
+}
+
+async function makeRenderer(
+  backend: Backend<GpuContext>,
+  inputs: PathTracerInputs,
+  order: Order,
+  budget: Budget,
+  seed: number,
+): Promise<{ renderer: PassRenderer; plan: Plan }> {
+  const scene = buildScene(
+    inputs,
+    order === 'single' ? 1 : 'unlimited',
+    budget,
+    budget.maxSpp,
+    seed,
+  );
+  const scenePlan = plan(scene);
+  const packed = packScene(await resolveScene(scene));
+  const renderer =
+    backend.kind === 'gpu'
+      ? await GpuSceneRenderer.create(
+          backend.gpu.device,
+          STATIC_KERNELS,
+          packed,
+          scenePlan.conditions,
+        )
+      : new CpuSceneRenderer(
+          sceneData(packed, scenePlan.conditions),
+          packed.width,
+          packed.height,
+          packed.seed,
+        );
+  return { renderer, plan: scenePlan };
+}
+
+export function createView(
+  context: ViewContext<GpuContext>,
+): WidgetView<VolumePathTracerFrame, GpuContext> {
+  // Canvases swap themselves between a WebGPU and a 2D context (canvasForContext), so
+  // they are the view's, not the base's managed ones; always read them from here.
+  const canvases: Partial<Record<Order, HTMLCanvasElement>> = {};
+  /** The WebGPU pictures of the canvases, made for one device. */
+  let views: Partial<Record<Order, { device: GPUDevice; view: AccumulationView }>> = {};
+  const captions: Partial<Record<Order, HTMLElement>> = {};
+  let planList: HTMLElement | null = null;
+  let plot: LinePlot | null = null;
+  let plotHint: HTMLElement | null = null;
+  let referenceButton: HTMLButtonElement | null = null;
+  let referenceProgress: HTMLProgressElement | null = null;
+  let referenceStatus: HTMLElement | null = null;
+  let paused = false;
+  let run: Run | null = null;
+  const references = new Map<string, ReferenceJob>();
+
+  const dropViews = (): void => {
+    for (const order of ORDERS) views[order]?.view.destroy();
+    views = {};
+  };
+
+  const discardRun = (): void => {
+    if (!run) return;
+    for (const order of ORDERS) {
+      const image = run.images[order];
+      image.renderer.destroy();
+      for (const snapshot of image.snapshots) snapshot.image?.destroy();
+    }
+    // The reference job stays in the cache (with its renderers) only while unfinished
+    // work of it may resume; a finished one keeps just its images.
+    run = null;
+  };
+
+  /** Everything GPU-side: the run, the cached references and the pictures (device loss, destroy). */
+  const releaseAll = (): void => {
+    discardRun();
+    for (const job of references.values()) destroyReference(job);
+    references.clear();
+    dropViews();
+  };
+
+  const updateReferenceStatus = (): void => {
+    if (!run || !referenceStatus || !referenceProgress || !referenceButton) return;
+    const job = run.reference;
+    const target = run.budget.referenceSpp;
+    const have = Math.min(job.accumulations.single.samples, job.accumulations.multiple.samples);
+    referenceProgress.max = target;
+    referenceProgress.value = job.done ? target : have;
+    referenceButton.disabled = job.done;
+    referenceButton.textContent = job.cancelled ? 'Compute reference' : 'Cancel reference';
+    referenceStatus.textContent = job.done
+      ? `Reference ready: ${target} spp per pixel per image (independent seed), cached for these parameters.`
+      : job.cancelled
+        ? `Reference cancelled at ${have} of ${target} spp: no error against it.`
+        : `Computing the reference: ${have} of ${target} spp per pixel…`;
+  };
+
+  const toggleReference = (): void => {
+    const job = run?.reference;
+    if (!job || job.done) return;
+    job.cancelled = !job.cancelled;
+    updateReferenceStatus();
+    if (!job.cancelled) context.scheduleRender();
+  };
+
+  /** Keeps the most recent references; unfinished ones beyond that are dropped. */
+  const trimReferences = (): void => {
+    while (references.size > MAX_CACHED_REFERENCES) {
+      const [oldest, job] = references.entries().next().value!;
+      destroyReference(job);
+      references.delete(oldest);
+    }
+  };
+
+  const startRun = async (backend: Backend<GpuContext>, inputs: PathTracerInputs): Promise<Run> => {
+    const budget = backend.kind === 'gpu' ? GPU_BUDGET : CPU_BUDGET;
+    const key = `${backend.kind}|${sceneKey(inputs)}`;
+    const made: PassRenderer[] = [];
+    try {
+      const single = await makeRenderer(backend, inputs, 'single', budget, IMAGE_SEED);
+      made.push(single.renderer);
+      const multiple = await makeRenderer(backend, inputs, 'multiple', budget, IMAGE_SEED);
+      made.push(multiple.renderer);
+      let reference = references.get(key);
+      if (!reference) {
+        const refSingle = await makeRenderer(backend, inputs, 'single', budget, REFERENCE_SEED);
+        made.push(refSingle.renderer);
+        const refMultiple = await makeRenderer(backend, inputs, 'multiple', budget, REFERENCE_SEED);
+        reference = {
+          renderers: { single: refSingle.renderer, multiple: refMultiple.renderer },
+          accumulations: {
+            single: refSingle.renderer.accumulation,
+            multiple: refMultiple.renderer.accumulation,
+          },
+          done: false,
+          cancelled: false,
+          passSpp: 1,
+        };
+        references.set(key, reference);
+        trimReferences();
+      }
+      const mask = mediumMask(inputs, budget.width, budget.height);
+      single.renderer.accumulation.setMask(mask);
+      multiple.renderer.accumulation.setMask(mask);
+      const progressive = (renderer: PassRenderer): Progressive => ({
+        renderer,
+        accumulation: renderer.accumulation,
+        milliseconds: 0,
+        timing: renderer.timing,
+        lastPassMs: 0,
+        snapshots: [],
+      });
+      for (const order of ORDERS) {
+        const canvas = canvases[order];
+        if (canvas) {
+          canvas.width = budget.width;
+          canvas.height = budget.height;
+        }
+      }
+      return {
+        key,
+        inputs,
+        budget,
+        backend: backend.kind,
+        images: { single: progressive(single.renderer), multiple: progressive(multiple.renderer) },
+        plans: { single: single.plan, multiple: multiple.plan },
+        mask,
+        reference,
+      };
+    } catch (error) {
+      for (const r of made) r.destroy();
+      throw error;
+    }
+  };
+
+  const hasWork = (current: Run): boolean => {
+    const job = current.reference;
+    return (
+      current.images.multiple.accumulation.samples < current.budget.maxSpp ||
+      (!job.done && !job.cancelled)
+    );
+  };
+
+  const referencePass = async (current: Run): Promise<void> => {
+    const job = current.reference;
+    if (job.done || job.cancelled || !job.renderers) return;
+    const { budget } = current;
+    let spent = 0;
+    let rendered = 0;
+    for (const order of ORDERS) {
+      const accumulation = job.accumulations[order];
+      const passSpp = Math.min(job.passSpp, budget.referencePass);
+      const samples = Math.min(passSpp, budget.referenceSpp - accumulation.samples);
+      if (samples <= 0) continue;
+      const output = await job.renderers[order].renderPass(accumulation.samples, samples);
+      spent += output.milliseconds;
+      rendered += samples;
+    }
+    if (rendered > 0 && spent > 0) {
+      const perSample = spent / rendered; // ms per spp of one order's image
+      job.passSpp = Math.max(
+        1,
+        Math.min(
+          budget.referencePass,
+          Math.floor(REFERENCE_FRAME_MS / (ORDERS.length * perSample)),
+        ),
+      );
+    }
+    if (ORDERS.every((order) => job.accumulations[order].samples >= budget.referenceSpp)) {
+      // Keep the moments (on the GPU for a GPU run), free the scene and its kernels.
+      const renderers = job.renderers;
+      job.accumulations = {
+        single: renderers.single.release(),
+        multiple: renderers.multiple.release(),
+      };
+      job.done = true;
+      job.renderers = null;
+    }
+  };
+
+  /** One frame: spp more samples per pixel in both images, and one reference pass. */
+  const frame = async (current: Run, sppPerFrame: number): Promise<void> => {
+    const { budget } = current;
+    if (paused) return;
+    for (const order of ORDERS) {
+      const image = current.images[order];
+      const have = image.accumulation.samples;
+      const samples = Math.min(sppPerFrame, budget.maxFrameSpp, budget.maxSpp - have);
+      if (samples <= 0) continue;
+      const output = await image.renderer.renderPass(have, samples);
+      if (run !== current) return;
+      image.milliseconds += output.milliseconds;
+      image.lastPassMs = output.milliseconds;
+      image.timing = output.timing ?? image.renderer.timing;
+      // Snapshots at spp growing by ≥ 25 %: even spacing on the log–log plot. A copy
+      // of the moments in the same store (a GPU buffer copy, nothing read back).
+      const last = image.snapshots.at(-1);
+      const total = image.accumulation.samples;
+      if (!last || total >= last.samples * 1.25 || total === budget.maxSpp)
+        image.snapshots.push({
+          samples: total,
+          milliseconds: image.milliseconds,
+          image: image.accumulation.snapshot(),
+          error: null,
+        });
+    }
+    await referencePass(current);
+  };
+
+  /**
+   * Draws an image: on WebGPU straight from its moments on the GPU (a render pass, no
+   * read-back); for the CPU twin, its float64 mean tone-mapped on the host.
+   */
+  const paint = async (order: Order, current: Run, accumulation: Accumulation): Promise<void> => {
+    const existing = canvases[order];
+    if (!existing) return;
+    if (accumulation instanceof GpuAccumulation) {
+      const canvas = canvasForContext(existing, 'webgpu');
+      canvases[order] = canvas;
+      const { device } = accumulation;
+      let entry = views[order];
+      if (!entry || entry.device !== device) {
+        entry?.view.destroy();
+        entry = { device, view: await AccumulationView.create(device, STATIC_KERNELS, canvas) };
+        views[order] = entry;
+      }
+      await entry.view.draw(accumulation, { kind: 'radiance', exposure: 0 });
+      return;
+    }
+    const canvas = canvasForContext(existing, '2d');
+    canvases[order] = canvas;
+    const drawing = canvas.getContext('2d');
+    if (!drawing) return;
+    const { width, height } = current.budget;
+    const mean = (await accumulation.readImage()).mean();
+    const rgba = toneMapRgba8(width, height, mean, 0);
+    drawing.putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
+  };
+
+  /**
+   * Each snapshot's error against the finished reference (one reduction each, once;
+   * then the copy is freed), and the fitted slopes. Null while the reference is not done
+   * or when the run was replaced meanwhile.
+   */
+  const referenceErrors = async (current: Run): Promise<ReferenceErrors | null> => {
+    const job = current.reference;
+    if (!job.done) return null;
+    const points: Record<Order, SweepPoint[]> = { single: [], multiple: [] };
+    for (const order of ORDERS) {
+      for (const snapshot of current.images[order].snapshots) {
+        if (snapshot.error === null && snapshot.image) {
+          snapshot.error = (
+            await snapshot.image.statistics(job.accumulations[order])
+          ).relativeError;
+          snapshot.image.destroy();
+          snapshot.image = null;
+          if (run !== current) return null;
+        }
+        const error = snapshot.error ?? NaN;
+        if (Number.isFinite(error))
+          points[order].push({
+            n: snapshot.samples,
+            rmse: error,
+            milliseconds: snapshot.milliseconds,
+          });
+      }
+    }
+    // The first frames pay the fixed cost of a dispatch; fit from 4 spp on. The slope
+    // against spp isolates the estimator (−½ for any unbiased Monte Carlo estimate);
+    // against time it also shows whether the cost per sample stayed constant.
+    const slope = (order: Order, against: 'time' | 'spp'): number | null => {
+      const usable = points[order].filter((p) => p.n >= 4);
+      return logLogSlope(
+        usable.map((p) => (against === 'time' ? p.milliseconds : p.n)),
+        usable.map((p) => p.rmse),
+      );
+    };
+    return {
+      points,
+      slopes: {
+        single: { time: slope('single', 'time'), spp: slope('single', 'spp') },
+        multiple: { time: slope('multiple', 'time'), spp: slope('multiple', 'spp') },
+      },
+    };
+  };
+
+  const plotErrors = ({ points, slopes }: ReferenceErrors): void => {
+    if (points.single.length + points.multiple.length === 0) return;
+    plotHint?.remove();
+    plotHint = null;
+    const merged = mergeSeries([points.single, points.multiple]);
+    // A guide of slope −½ through the multiple-scattering curve's first fitted point.
+    const anchor = points.multiple.find((p) => p.n >= 4) ?? points.multiple[0];
+    const guide = merged.x.map((x) =>
+      anchor
+        ? anchor.rmse * 10 ** (-0.5 * (x - Math.log10(Math.max(anchor.milliseconds, 1e-4))))
+        : NaN,
+    );
+    plot?.update(merged.x, [
+      {
+        label: `single scattering, p = ${slopeText(slopes.single.time)}`,
+        color: COLOURS.single,
+        spanGaps: true,
+        values: merged.values[0]!,
+      },
+      {
+        label: `multiple scattering, p = ${slopeText(slopes.multiple.time)}`,
+        color: COLOURS.multiple,
+        spanGaps: true,
+        values: merged.values[1]!,
+      },
+      { label: 'slope −½', color: '#888888', dash: [6, 4], values: guide },
+    ]);
+  };
+
+  const showPlan = (current: Run): void => {
+    const list = planList;
+    if (!list || list.dataset['key'] === current.key) return;
+    list.dataset['key'] = current.key;
+    list.replaceChildren();
+    for (const order of ORDERS) {
+      const p = current.plans[order];
+      const method = (effect: string): string | null =>
+        p.effects.find((e) => e.effect === effect && e.enabled)?.method ?? null;
+      const term = document.createElement('dt');
+      term.textContent = `Plan, ${order === 'single' ? 'single' : 'multiple'} (${p.integrator})`;
+      const value = document.createElement('dd');
+      value.dataset['readout'] = `plan-${order}`;
+      value.textContent = [
+        method('integrator'),
+        method('in-scattering'),
+        method('view transmittance'),
+      ]
+        .filter((m): m is string => m !== null)
+        .join('; ');
+      list.append(term, value);
+    }
+  };
+
+  /** Paints both images and gathers the frame's numbers (null: the run was replaced meanwhile). */
+  const collect = async (current: Run): Promise<VolumePathTracerFrame | null> => {
+    const { images } = current;
+    const stats: Record<Order, ImageStatistics> = {
+      single: await images.single.accumulation.statistics(),
+      multiple: await images.multiple.accumulation.statistics(),
+    };
+    if (run !== current) return null;
+    for (const order of ORDERS) {
+      const image = images[order];
+      await paint(order, current, image.accumulation);
+      if (run !== current) return null;
+      const caption = captions[order];
+      if (caption)
+        caption.textContent = `${order === 'single' ? 'Single scattering (order 1)' : 'Multiple scattering (all orders)'}: ${image.accumulation.samples} spp`;
+      canvases[order]?.setAttribute(
+        'aria-label',
+        `${order === 'single' ? 'Single' : 'Multiple'} scattering image, ${image.accumulation.samples} samples per pixel`,
+      );
+    }
+    const errors = await referenceErrors(current);
+    if (run !== current) return null;
+    const numbers = (order: Order) => ({
+      samples: images[order].accumulation.samples,
+      milliseconds: images[order].milliseconds,
+      lastPassMs: images[order].lastPassMs,
+      stats: stats[order],
+    });
+    return {
+      inputs: current.inputs,
+      budget: current.budget,
+      paused,
+      images: { single: numbers('single'), multiple: numbers('multiple') },
+      timing: images.multiple.timing,
+      reference: { done: current.reference.done, cancelled: current.reference.cancelled },
+      errors,
+    };
+  };
+
+  /** One frame on a backend: start a run for new parameters, add samples, and draw. */
+  const renderOn = async (backend: Backend<GpuContext>): Promise<VolumePathTracerFrame | null> => {
+    // Captured: the context's signal is a fresh one once the widget is destroyed.
+    const signal = context.signal;
+    const inputs = inputsFrom(context.values);
+    const key = `${backend.kind}|${sceneKey(inputs)}`;
+    try {
+      if (run?.key !== key) {
+        discardRun();
+        run = await startRun(backend, inputs);
+        if (signal.aborted) {
+          discardRun();
+          return null;
+        }
+      }
+      const current = run;
+      await frame(current, inputs.spp);
+      const result = await collect(current);
+      if (result && run === current && !paused && hasWork(current)) context.scheduleRender();
+      return result;
+    } catch (error) {
+      // Destroyed mid-frame (its renderers released under it): not a GPU failure.
+      if (signal.aborted) return null;
+      throw error;
+    }
+  };
+
+  return {
+    cpuNotice: `Showing the float64 CPU twin of the same path tracer: ${CPU_BUDGET.width}×${CPU_BUDGET.height} pixels, at most ${CPU_BUDGET.maxSpp} samples per pixel and ${CPU_BUDGET.maxFrameSpp} per frame, reference ${CPU_BUDGET.referenceSpp}.`,
+    build(stage) {
+      const panels = ORDERS.map((order) => {
+        const canvas = imageCanvas(
+          order === 'single' ? 'Single scattering image' : 'Multiple scattering image',
+          GPU_BUDGET.width,
+          GPU_BUDGET.height,
+        );
+        canvases[order] = canvas;
+        const { panel } = imagePanel(
+          canvas,
+          order === 'single'
+            ? 'Single scattering (order 1)'
+            : 'Multiple scattering (path tracing, all orders)',
+        );
+        const caption = panel.querySelector('figcaption');
+        if (caption) captions[order] = caption;
+        panel.dataset['order'] = order;
+        return panel;
+      });
+      stage.appendChild(imageFigure(...panels));
+
+      const bar = document.createElement('div');
+      bar.className = 'sb-sweep sb-vpt-bar';
+      const pauseButton = document.createElement('button');
+      pauseButton.type = 'button';
+      pauseButton.className = 'sb-button';
+      pauseButton.dataset['action'] = 'pause';
+      pauseButton.textContent = 'Pause';
+      pauseButton.addEventListener('click', () => {
+        paused = !paused;
+        pauseButton.textContent = paused ? 'Resume' : 'Pause';
+        pauseButton.setAttribute('aria-pressed', String(paused));
+        if (!paused) context.scheduleRender();
+      });
+      const restart = document.createElement('button');
+      restart.type = 'button';
+      restart.className = 'sb-button';
+      restart.dataset['action'] = 'restart';
+      restart.textContent = 'Restart';
+      restart.addEventListener('click', () => {
+        discardRun();
+        context.scheduleRender();
+      });
+      referenceButton = document.createElement('button');
+      referenceButton.type = 'button';
+      referenceButton.className = 'sb-button';
+      referenceButton.dataset['action'] = 'reference';
+      referenceButton.textContent = 'Cancel reference';
+      referenceButton.addEventListener('click', toggleReference);
+      referenceProgress = document.createElement('progress');
+      referenceProgress.max = 1;
+      referenceProgress.value = 0;
+      referenceProgress.setAttribute('aria-label', 'Reference progress');
+      referenceStatus = document.createElement('span');
+      referenceStatus.className = 'sb-sweep-status sb-vpt-reference-status';
+      referenceStatus.setAttribute('aria-live', 'polite');
+      bar.append(pauseButton, restart, referenceButton, referenceProgress, referenceStatus);
+      stage.appendChild(bar);
+
+      plotHint = document.createElement('p');
+      plotHint.className = 'sb-sweep-hint';
+      plotHint.textContent =
+        'The error plot appears when the converged reference is ready: relative RMSE of each image against its reference, against accumulated GPU time, on log–log axes.';
+      const plotArea = document.createElement('div');
+      plotArea.className = 'sb-plot';
+      plotArea.setAttribute('role', 'img');
+      plotArea.setAttribute(
+        'aria-label',
+        'Log–log plot of the relative error of both images against accumulated GPU time',
+      );
+      stage.append(plotHint, plotArea);
+      plot = new LinePlot(plotArea, {
+        xLabel: 'log₁₀ accumulated time (ms)',
+        yLabel: 'relative RMSE',
+        yLog: true,
+        height: 220,
+      });
+    },
+    buildReadoutExtras(area) {
+      const list = document.createElement('dl');
+      list.className = 'sb-vpt-plan';
+      list.setAttribute('aria-label', 'Plan of the two renders');
+      area.appendChild(list);
+      planList = list;
+    },
+    // The scene renderers take the device; they are made per run (startRun).
+    createRenderer: (gpu: GpuContext) => gpu,
+    renderGpu: (gpu) => renderOn({ kind: 'gpu', gpu, renderer: gpu }),
+    renderCpu: () => renderOn({ kind: 'cpu', reason: '' }),
+    // A device loss or a failed GPU frame: the GPU run, references and pictures go.
+    onCpuFallback: releaseAll,
+    destroy: releaseAll,
+    show(shown) {
+      if (!run) return;
+      const capped = shown.images.single.stats.capped + shown.images.multiple.stats.capped;
+      if (capped > 0)
+        context.showNotice(
+          'capped',
+          'warning',
+          `${capped} walks reached the hard cap of 1024 vertices and were cut short: the multiple-scattering image is slightly too dark.`,
+        );
+      else context.clearNotice('capped');
+      if (shown.errors) plotErrors(shown.errors);
+      updateReferenceStatus();
+      showPlan(run);
+    },
+  };
+}
