@@ -1,13 +1,11 @@
-// <sb-delta-tracking>: unbiased and biased transmittance estimators (chapter 6).
-// Averages spp estimates per pixel on the GPU, shows the mean transmittance
-// next to the per-pixel variance (false colour, labelled scale), the RMSE and
-// mean bias against the exact T, the lookups per estimate and the GPU time; a
-// cancellable sweep over spp = 1, 2, 4, …, 256 plots RMSE against GPU time.
-// The comparison view (view=compare) renders all five estimators side by side,
-// once at the same spp and once at the same GPU time (the spp of each from its
-// measured cost per sample, compare.ts), and sweeps all five into one log–log
-// plot of RMSE against time with each curve's fitted slope.
-import { BackendChooser, type Backend, gpuFailureReason } from '../base/backend.ts';
+// The drawing of <sb-delta-tracking>: the single view (estimated T and its variance,
+// painted on 2D canvases from either backend, and the sweep over spp) and the
+// comparison view (all five estimators at equal samples and equal time, a long job
+// with its own readouts, table and sweep of all five). The single view's readouts,
+// the backend choice and the fallback are widget.ts's and the base element's.
+import type { GpuContext } from '../../gpu/device.ts';
+import type { Backend } from '../base/backend.ts';
+import type { FrameCost } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
 import {
@@ -18,9 +16,9 @@ import {
   niceScale,
 } from '../base/imagePanel.ts';
 import { ReadoutList } from '../base/readoutList.ts';
-import { SweepControls, logLogSlope, type SweepPoint } from '../base/sweep.ts';
-import { WidgetElement, type Preset } from '../base/widgetElement.ts';
-import { DELTA_TRACKING } from './schema.ts';
+import { SweepControls, type SweepPoint } from '../base/sweep.ts';
+import { logLogSlope } from '../../statistics/regression.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
 import {
   CALIBRATION_RUNS,
   CALIBRATION_SPP,
@@ -57,15 +55,7 @@ import {
   type TrackingImage,
   type TrackingInputs,
 } from './model.ts';
-
-const READOUT_ROWS = [
-  ['rmse', 'RMSE against the exact T'],
-  ['bias', 'Mean bias (± 1 SE)'],
-  ['lookups', 'Density lookups per estimate'],
-  ['time', 'Time per render'],
-  ['capped', 'Capped estimates'],
-  ['slope', 'Sweep: fitted RMSE ∝ spp^p'],
-] as const;
+import { MAJORANT_NAMES, type TrackingFrame } from './widget.ts';
 
 const COMPARE_ROWS = [
   ['budget', 'Equal-time budget'],
@@ -74,18 +64,12 @@ const COMPARE_ROWS = [
   ['timing', 'Times measured with'],
 ] as const;
 
-const MAJORANT_NAMES: Readonly<Record<string, string>> = {
-  tight: 'tight majorant',
-  loose: 'loose majorant (×3)',
-  low: 'majorant too low (×0.5)',
-};
-
-/** One frame's image on the backend in use, with its cost. */
-interface Frame {
+/** One image on the backend in use, the exact T, and what it cost. */
+interface Measured {
   image: TrackingImage;
   exact: Float64Array;
   milliseconds: number;
-  how: string;
+  timing: FrameCost['timing'];
 }
 
 /** Cost per sample of each estimator on one backend and majorant, measured once. */
@@ -108,37 +92,13 @@ function compareKey(inputs: TrackingInputs, backend: string): string {
   return [backend, inputs.estimator, inputs.spp, inputs.majorant, inputs.seed].join('|');
 }
 
-export class DeltaTrackingElement extends WidgetElement {
-  protected readonly entry = DELTA_TRACKING;
-  protected override presets: readonly Preset[] = [
-    { label: 'delta tracking, tight', values: { estimator: 'delta', majorant: 'tight' } },
-    { label: 'ratio tracking', values: { estimator: 'ratio', majorant: 'tight' } },
-    { label: 'biased exp(−τ̂)', values: { estimator: 'biased', majorant: 'tight' } },
-    { label: 'majorant too low', values: { estimator: 'delta', majorant: 'low' } },
-    {
-      label: 'all five, equal time',
-      values: { view: 'compare', estimator: 'delta', majorant: 'tight' },
-    },
-    {
-      label: 'all five, loose majorant',
-      values: { view: 'compare', estimator: 'delta', majorant: 'loose' },
-    },
-  ];
-
+class DeltaTrackingView implements WidgetView<TrackingFrame, DeltaTrackingGpu> {
   private imageCanvas: HTMLCanvasElement | null = null;
   private varianceCanvas: HTMLCanvasElement | null = null;
   private scaleTop: HTMLElement | null = null;
-  private readouts: ReadoutList | null = null;
-  private cost: HTMLElement | null = null;
   private sweep: SweepControls | null = null;
-  private readonly backends = new BackendChooser(
-    (gpu) => new DeltaTrackingGpu(gpu),
-    () => {
-      this.sweep?.cancel('stopped: the GPU was lost');
-      this.sweepAll?.cancel('stopped: the GPU was lost');
-      this.scheduleRender();
-    },
-  );
+
+  constructor(private readonly context: ViewContext<DeltaTrackingGpu>) {}
 
   // The two views: each has its stage content and readouts, and only the shown
   // view's are in the document (so each view's selectors find one of each).
@@ -158,7 +118,7 @@ export class DeltaTrackingElement extends WidgetElement {
   /** compareKey of the images the grid holds ('' before the first). */
   private gridKey = '';
 
-  protected buildStage(stage: HTMLElement): void {
+  build(stage: HTMLElement): void {
     this.stageHost = stage;
     this.singleStage.className = 'sb-dt-view';
     this.compareStage.className = 'sb-dt-view';
@@ -187,7 +147,7 @@ export class DeltaTrackingElement extends WidgetElement {
     );
     this.sweep = new SweepControls(
       stage,
-      this,
+      this.context.host,
       {
         name: 'spp',
         buttonText: 'Run sweep spp = 1 … 256',
@@ -200,11 +160,11 @@ export class DeltaTrackingElement extends WidgetElement {
   }
 
   private buildCompareStage(stage: HTMLElement): void {
-    this.grid = new CompareGrid(this.widgetId);
+    this.grid = new CompareGrid(this.context.widgetId);
     stage.appendChild(this.grid.element);
     this.sweepAll = new SweepControls(
       stage,
-      this,
+      this.context.host,
       {
         name: 'spp',
         buttonText: 'Sweep all five, spp = 1 … 256',
@@ -216,15 +176,17 @@ export class DeltaTrackingElement extends WidgetElement {
     );
   }
 
-  protected buildReadout(readout: HTMLElement): void {
+  /**
+   * The base element's readout list (the single view's rows and cost line) moves into
+   * the single view's container; the comparison has a list and a table of its own.
+   */
+  buildReadoutExtras(readout: HTMLElement): void {
     this.readoutHost = readout;
-    this.readouts = new ReadoutList(this.singleReadout, READOUT_ROWS);
-    this.cost = this.readouts.cost;
-    this.set('slope', 'run the sweep');
+    this.singleReadout.append(...readout.childNodes);
     this.compareReadouts = new ReadoutList(this.compareReadout, COMPARE_ROWS);
     this.table = new CompareTable();
     this.compareReadout.insertBefore(this.table.element, this.compareReadouts.cost);
-    this.showView(inputsFrom(this.values).view);
+    this.showView(inputsFrom(this.context.values).view);
   }
 
   /**
@@ -237,22 +199,26 @@ export class DeltaTrackingElement extends WidgetElement {
     if (this.view !== null)
       (view === 'compare' ? this.sweep : this.sweepAll)?.cancel('stopped: the view changed');
     this.view = view;
-    this.dataset['view'] = view;
+    this.context.host.dataset['view'] = view;
     this.stageHost?.replaceChildren(view === 'compare' ? this.compareStage : this.singleStage);
     this.readoutHost?.replaceChildren(
       view === 'compare' ? this.compareReadout : this.singleReadout,
     );
-    const gridControl = this.querySelector(`#${CSS.escape(`${this.widgetId}-grid`)}`);
+    const gridControl = this.context.host.querySelector(
+      `#${CSS.escape(`${this.context.widgetId}-grid`)}`,
+    );
     const wrapper = gridControl?.closest<HTMLElement>('.sb-control');
     if (wrapper) wrapper.hidden = view !== 'compare';
-    const label = this.querySelector(`label[for="${CSS.escape(`${this.widgetId}-estimator`)}"]`);
+    const label = this.context.host.querySelector(
+      `label[for="${CSS.escape(`${this.context.widgetId}-estimator`)}"]`,
+    );
     if (label)
       label.textContent =
         view === 'compare' ? 'Estimator that sets the equal-time budget' : 'Estimator';
   }
 
   private set(key: string, text: string, state?: 'ok' | 'bad'): void {
-    this.readouts?.set(key, text, state);
+    this.context.setReadout(key, text, state);
   }
 
   /** One image with spp samples on the backend in use, and the exact T to compare it with. */
@@ -260,14 +226,14 @@ export class DeltaTrackingElement extends WidgetElement {
     backend: Backend<DeltaTrackingGpu>,
     inputs: TrackingInputs,
     spp: number,
-  ): Promise<Frame> {
+  ): Promise<Measured> {
     if (backend.kind === 'gpu') {
       const image = await backend.renderer.render(inputs, spp);
       return {
         image,
         exact: exactImage(IMAGE_WIDTH, IMAGE_HEIGHT),
         milliseconds: image.milliseconds,
-        how: timingLabel(image.timing),
+        timing: image.timing,
       };
     }
     const { image, milliseconds } = await renderCpu(inputs, spp);
@@ -275,91 +241,76 @@ export class DeltaTrackingElement extends WidgetElement {
       image,
       exact: exactImage(CPU_WIDTH, CPU_HEIGHT),
       milliseconds,
-      how: timingLabel('cpu'),
+      timing: 'cpu',
     };
   }
 
-  protected async render(): Promise<void> {
-    const inputs = inputsFrom(this.values);
-    this.showView(inputs.view);
-    const backend = await this.backends.choose();
-    if (backend.kind === 'gpu') {
-      this.clearNotice('backend');
-    } else {
-      this.showCpuFallbackNotice(
-        backend.reason,
-        `Showing the float64 CPU twin: the same rays and estimators, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels${inputs.view === 'compare' ? ', with CPU wall time in place of GPU time' : ''}.`,
-      );
-    }
-    try {
-      if (inputs.view === 'compare') {
-        await this.renderCompare(inputs, backend);
-      } else {
-        const frame = await this.frame(backend, inputs, inputs.spp);
-        this.showFrame(inputs, frame, backend);
-      }
-    } catch (error) {
-      if (backend.kind === 'cpu') throw error;
-      this.backends.useCpu(gpuFailureReason(error));
-      this.sweep?.cancel('stopped: the GPU path failed');
-      this.sweepAll?.cancel('stopped: the GPU path failed');
-      this.scheduleRender();
-    }
+  get cpuNotice(): string {
+    const compare = inputsFrom(this.context.values).view === 'compare';
+    return `Showing the float64 CPU twin: the same rays and estimators, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels${compare ? ', with CPU wall time in place of GPU time' : ''}.`;
   }
 
-  private showFrame(
-    inputs: TrackingInputs,
-    frame: Frame,
-    backend: Backend<DeltaTrackingGpu>,
-  ): void {
-    const { image, exact } = frame;
+  createRenderer(gpu: GpuContext): DeltaTrackingGpu {
+    return new DeltaTrackingGpu(gpu);
+  }
+
+  renderGpu(renderer: DeltaTrackingGpu, gpu: GpuContext): Promise<TrackingFrame | null> {
+    return this.renderOn({ kind: 'gpu', gpu, renderer });
+  }
+
+  renderCpu(): Promise<TrackingFrame | null> {
+    return this.renderOn({ kind: 'cpu', reason: '' });
+  }
+
+  /** The single view's frame; the comparison is a long job that reports itself (null). */
+  private async renderOn(backend: Backend<DeltaTrackingGpu>): Promise<TrackingFrame | null> {
+    const inputs = inputsFrom(this.context.values);
+    this.showView(inputs.view);
+    if (inputs.view === 'compare') {
+      await this.renderCompare(inputs, backend);
+      return null;
+    }
+    const { image, exact, milliseconds, timing } = await this.frame(backend, inputs, inputs.spp);
     const variance = sampleVariance(image);
-    const stats = imageStatistics(image, exact, variance);
+    return {
+      inputs,
+      image,
+      variance,
+      stats: imageStatistics(image, exact, variance),
+      estimatorName: nameOf(inputs.estimator),
+      milliseconds,
+      timing,
+    };
+  }
+
+  onCpuFallback(): void {
+    this.sweep?.cancel('stopped: the GPU was lost');
+    this.sweepAll?.cancel('stopped: the GPU was lost');
+  }
+
+  show({ image, variance, stats, estimatorName }: TrackingFrame): void {
     const scale = niceScale(stats.largestVariance);
     if (this.imageCanvas && this.varianceCanvas)
       paintImages(this.imageCanvas, this.varianceCanvas, image, variance, scale);
     if (this.scaleTop)
       this.scaleTop.textContent = image.spp < 2 ? 'needs spp ≥ 2' : formatNumber(scale, 2);
-    this.set('rmse', formatNumber(stats.rmse, 3));
-    // Significant at 5 SE (the book's threshold for "biased", physics.md §4.5).
-    const significant = image.spp >= 2 && Math.abs(stats.bias) > 5 * stats.biasError;
-    this.set(
-      'bias',
-      image.spp < 2
-        ? `${formatNumber(stats.bias, 3)} (SE needs spp ≥ 2)`
-        : `${formatNumber(stats.bias, 3)} ± ${formatNumber(stats.biasError, 2)}${significant ? ' (biased)' : ''}`,
-      significant ? 'bad' : undefined,
-    );
-    this.set('lookups', formatNumber(stats.lookupsPerEstimate, 3));
-    this.set('time', `${formatMilliseconds(frame.milliseconds)} (${frame.how})`);
-    this.recordFrameCost(frame.milliseconds, frame.how);
-    this.set('capped', String(image.capped), image.capped > 0 ? 'bad' : 'ok');
     if (image.capped > 0) {
-      this.showNotice(
+      this.context.showNotice(
         'capped',
         'warning',
         `${image.capped} estimates reached their cap and were cut short; the image is biased there.`,
       );
     } else {
-      this.clearNotice('capped');
+      this.context.clearNotice('capped');
     }
-    const where =
-      backend.kind === 'gpu'
-        ? `WebGPU (${backend.gpu.adapterDescription}): ${IMAGE_WIDTH}×${IMAGE_HEIGHT} rays`
-        : `CPU fallback (float64 twin): ${CPU_WIDTH}×${CPU_HEIGHT} rays`;
-    const name = ESTIMATOR_NAMES[inputs.estimator] ?? inputs.estimator;
-    if (this.cost) {
-      this.cost.textContent = `${where} × spp = ${image.spp} estimates (${name}, ${MAJORANT_NAMES[inputs.majorant] ?? inputs.majorant}) in ${formatMilliseconds(frame.milliseconds)} (${frame.how}). Reference: the exact T = e^(−τ) from the closed-form optical depth.`;
-    }
-    if (this.imageCanvas)
-      this.imageCanvas.setAttribute(
-        'aria-label',
-        `Estimated transmittance, ${name}, spp = ${image.spp}, RMSE ${formatNumber(stats.rmse, 3)}`,
-      );
+    this.imageCanvas?.setAttribute(
+      'aria-label',
+      `Estimated transmittance, ${estimatorName}, spp = ${image.spp}, RMSE ${formatNumber(stats.rmse, 3)}`,
+    );
   }
 
   /** The statistics a grid image shows, from one frame. */
-  private cellOf(frame: Frame): CompareCell {
+  private cellOf(frame: Measured): CompareCell {
     const variance = sampleVariance(frame.image);
     const stats = imageStatistics(frame.image, frame.exact, variance);
     let sum = 0;
@@ -388,7 +339,7 @@ export class DeltaTrackingElement extends WidgetElement {
     const cached = this.calibrations.get(key);
     if (cached) return cached;
     const changed = (): boolean => {
-      const now = inputsFrom(this.values);
+      const now = inputsFrom(this.context.values);
       return now.view !== 'compare' || now.majorant !== inputs.majorant;
     };
     const status = (text: string): void => {
@@ -423,7 +374,7 @@ export class DeltaTrackingElement extends WidgetElement {
         );
         const frame = await this.frame(backend, withEstimator(inputs, estimator), calibrate);
         times.push(frame.milliseconds);
-        how = frame.how;
+        how = timingLabel(frame.timing);
       }
       costs[estimator] = costPerSample(times, calibrate);
       spp[estimator] = calibrate;
@@ -445,7 +396,7 @@ export class DeltaTrackingElement extends WidgetElement {
     const grid = this.grid!;
     const key = compareKey(inputs, backend.kind);
     const stale = (): boolean => {
-      const now = inputsFrom(this.values);
+      const now = inputsFrom(this.context.values);
       return now.view !== 'compare' || compareKey(now, backend.kind) !== key;
     };
     const reference: EstimatorKey = isEstimatorKey(inputs.estimator) ? inputs.estimator : 'delta';
@@ -549,8 +500,8 @@ export class DeltaTrackingElement extends WidgetElement {
    */
   private runSweepAll(): Promise<void> {
     return this.sweepAll!.runSeries(async () => {
-      const inputs = inputsFrom(this.values);
-      const backend = await this.backends.choose();
+      const inputs = inputsFrom(this.context.values);
+      const backend = await this.context.backend();
       const collected: SweepPoint[][] = ESTIMATOR_ORDER.map(() => []);
       // A slope is shown once two points at spp ≥ FIT_MIN_SPP exist.
       const slopeText = (
@@ -600,8 +551,8 @@ export class DeltaTrackingElement extends WidgetElement {
   /** Renders spp = 1, 2, 4, …, 256 and fits the slope of log RMSE against log spp. */
   private runSweep(): Promise<void> {
     return this.sweep!.run(async () => {
-      const inputs = inputsFrom(this.values);
-      const backend = await this.backends.choose();
+      const inputs = inputsFrom(this.context.values);
+      const backend = await this.context.backend();
       this.set('slope', 'sweeping…');
       const label = `${ESTIMATOR_NAMES[inputs.estimator] ?? inputs.estimator}, ${MAJORANT_NAMES[inputs.majorant] ?? inputs.majorant}`;
       return {
@@ -628,7 +579,8 @@ export class DeltaTrackingElement extends WidgetElement {
   }
 }
 
-export function defineDeltaTracking(): void {
-  if (!customElements.get('sb-delta-tracking'))
-    customElements.define('sb-delta-tracking', DeltaTrackingElement);
+export function createView(
+  context: ViewContext<DeltaTrackingGpu>,
+): WidgetView<TrackingFrame, DeltaTrackingGpu> {
+  return new DeltaTrackingView(context);
 }
