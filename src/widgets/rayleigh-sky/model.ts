@@ -14,7 +14,10 @@
 import { rayleighEval } from '../../reference/phase.ts';
 import { transmittanceFromOpticalThickness } from '../../reference/transmittance.ts';
 import type { ParameterValues } from '../parameters.ts';
-import { logLogSlope, type SweepPoint } from '../base/sweep.ts';
+// The fit from the statistics module, the point type as a type only: this module stays
+// free of the DOM (widget.ts imports it, and Node imports every widget.ts).
+import { logLogSlope } from '../../statistics/regression.ts';
+import type { SweepPoint } from '../base/sweep.ts';
 
 /** Earth radius and top of the atmosphere (m), Bruneton & Neyret 2008. */
 export const EARTH_RADIUS = 6360e3;

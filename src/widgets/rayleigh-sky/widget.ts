@@ -5,15 +5,142 @@
 // the relative error and the GPU time of the panorama (timestamp queries, median
 // over frames). A cancellable sweep over N plots the probes' relative RMS error
 // against that time and fits the order of convergence.
-//
-// Not yet ported to a view: load() returns the widget's own element class, which
-// keeps its shell code (see /work/briefs/porting.md); the data below is already
-// the definition's (deck slides, schema).
 import { defineWidget } from '../base/definition.ts';
+import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { RAYLEIGH_SKY } from './schema.ts';
+import {
+  CANVAS_HEIGHT,
+  CANVAS_WIDTH,
+  FIT_FROM_STEPS,
+  REFERENCE_STEPS,
+  probeError,
+  relativeError,
+  type Rgb,
+  type SkyInputs,
+  type SkyProbes,
+} from './model.ts';
 
-export const widget = defineWidget({
+export type SkyTiming = GpuTiming | 'cpu';
+
+/** The CPU fallback draws the panorama at 1/CPU_SCALE of the canvas's resolution. */
+export const CPU_SCALE = 4;
+
+/** Probe keys in probesFor order, and the readout each one fills. */
+const PROBE_KEYS = ['zenith', 'toward', 'away'] as const;
+
+/** One frame: the backend's probes and their cost, the picture's cost, and the cached reference. */
+export interface RayleighSkyFrame {
+  inputs: SkyInputs;
+  probes: SkyProbes;
+  probeMilliseconds: number;
+  probeTiming: SkyTiming;
+  capped: boolean;
+  picture: {
+    /** This frame's time per panorama (ms), the frame's recorded cost. */
+    lastMilliseconds: number;
+    /** Median time per panorama over the last `frames` frames at this N (ms). */
+    milliseconds: number;
+    frames: number;
+    /** Passes per timed submit (more than 1 when one panorama is under the timer's resolution). */
+    passes: number;
+    timing: SkyTiming;
+  };
+  /** Float64, N = M = REFERENCE_STEPS, computed once per sun elevation and cached. */
+  reference: SkyProbes;
+}
+
+function formatRgb(rgb: Rgb, digits = 4): string {
+  return rgb.map((v) => formatNumber(v, digits)).join(', ');
+}
+
+function formatPercent(error: number | null): string {
+  if (error === null) return '0 (exact: no light)';
+  return `${formatNumber(100 * error, 3)}%`;
+}
+
+function probeRow(k: number) {
+  return {
+    key: PROBE_KEYS[k]!,
+    format: ({ probes }: RayleighSkyFrame) => formatRgb(probes.radiance[k]!),
+  };
+}
+
+function errorText({ probes, reference }: RayleighSkyFrame): string {
+  const errors = PROBE_KEYS.map((_, k) =>
+    relativeError(probes.radiance[k]!, reference.radiance[k]!),
+  );
+  const worst = errors.reduce<number | null>(
+    (a, b) => (b === null ? a : Math.max(a ?? 0, b)),
+    null,
+  );
+  const rms = probeError(probes, reference);
+  return (
+    `${formatPercent(worst)} (zenith ${formatPercent(errors[0]!)}, toward ${formatPercent(errors[1]!)}, away ${formatPercent(errors[2]!)})` +
+    (rms === null ? '' : `; relative RMS ${formatPercent(rms)}`)
+  );
+}
+
+export const widget = defineWidget<RayleighSkyFrame>({
   entry: RAYLEIGH_SKY,
+  presets: [
+    { label: 'noon', values: { 'sun-elevation': 60, scattering: 'on' } },
+    { label: 'afternoon', values: { 'sun-elevation': 20, scattering: 'on' } },
+    { label: 'sunset', values: { 'sun-elevation': 2, scattering: 'on' } },
+    { label: 'no scattering', values: { 'sun-elevation': 30, scattering: 'off' } },
+  ],
+  readouts: {
+    rows: [
+      { ...probeRow(0), label: 'Zenith radiance L (R, G, B), sr⁻¹' },
+      { ...probeRow(1), label: '10° up, toward the sun' },
+      { ...probeRow(2), label: '10° up, away from the sun' },
+      {
+        key: 'error',
+        label: `Relative error vs float64, N = M = ${REFERENCE_STEPS}`,
+        format: errorText,
+      },
+      {
+        key: 'sun',
+        label: 'Direct sunlight T_sun (R, G, B)',
+        format: ({ probes: { sunTransmittance: sun } }) =>
+          sun.every((t) => t === 0) ? '0, 0, 0 (the sun has set)' : formatRgb(sun),
+      },
+      {
+        key: 'zenith-ratio',
+        label: 'Zenith blue/red, L_B/L_R',
+        format: ({ probes }) => {
+          const zenith = probes.radiance[0]!;
+          return zenith[0] > 0
+            ? formatNumber(zenith[2] / zenith[0], 4)
+            : 'no sky light (scattering off)';
+        },
+      },
+      {
+        key: 'sun-ratio',
+        label: 'Direct sun red/blue, T_R/T_B',
+        format: ({ probes: { sunTransmittance: sun } }) =>
+          sun[2] > 0 ? formatNumber(sun[0] / sun[2], 4) : 'no direct sun',
+      },
+      // The sweep's rows are the view's to write (context.setReadout).
+      {
+        key: 'slope',
+        label: `Sweep: error ∝ N^p (fit over N ≥ ${FIT_FROM_STEPS})`,
+        initial: 'run the sweep',
+      },
+      { key: 'time-slope', label: 'Sweep: error ∝ time^q, time ∝ N^a', initial: 'run the sweep' },
+    ],
+    cost: ({ picture }) => ({ milliseconds: picture.lastMilliseconds, timing: picture.timing }),
+    costLine: ({ inputs, picture, probeMilliseconds, probeTiming }, how, backend) => {
+      const work = `N = ${inputs.steps} view samples × M = ${inputs.sunSteps} sun samples per pixel`;
+      const frames = `median of ${picture.frames} frame${picture.frames === 1 ? '' : 's'} at this N`;
+      const passes =
+        picture.passes > 1 ? `, each timed over ${picture.passes} passes in one submit` : '';
+      const referenceNote = `Reference: float64, N = M = ${REFERENCE_STEPS}, computed once per sun elevation and cached.`;
+      return backend.kind === 'gpu'
+        ? `panorama ${CANVAS_WIDTH}×${CANVAS_HEIGHT}, ${work}, in ${formatMilliseconds(picture.milliseconds)} per frame (${how}, ${frames}${passes}); probes in ${formatMilliseconds(probeMilliseconds)} (${timingLabel(probeTiming)}). ${referenceNote}`
+        : `panorama ${CANVAS_WIDTH / CPU_SCALE}×${CANVAS_HEIGHT / CPU_SCALE}, ${work}, in ${formatMilliseconds(picture.milliseconds)} per frame (${how}, ${frames}); probes in ${formatMilliseconds(probeMilliseconds)} (${timingLabel('cpu')}, float64 twin). ${referenceNote}`;
+    },
+  },
   slides: [
     {
       title: 'Why the sky is blue',
@@ -53,5 +180,5 @@ export const widget = defineWidget({
     },
   ],
   deckOrder: 1,
-  load: async () => ({ element: (await import('./element.ts')).RayleighSkyElement }),
+  load: () => import('./view.ts'),
 });
