@@ -2,7 +2,7 @@
 // line of its own. At build time the statement (exercises/ID/statement.md) is
 // rendered with the chapter's own Markdown + KaTeX pipeline and put inside the
 // element, followed by the starter code, so the exercise reads without JavaScript;
-// the element (src/widgets/exercise/element.ts) keeps the statement and replaces
+// the element (src/widgets/exercise/view.ts) keeps the statement and replaces
 // the starter listing with the editor.
 import { existsSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';

@@ -1,6 +1,5 @@
-// <sb-exercise exercise="ID">: an autograded exercise in the page (issue 7). The
-// statement was rendered into the element at build time (src/book/build/exercises.ts)
-// and is kept; the element adds a CodeMirror WGSL editor, Run checks (the public
+// The view of <sb-exercise exercise="ID"> (widget.ts): the statement the build
+// rendered into the element is kept; the view adds a CodeMirror WGSL editor, Run checks (the public
 // checks of the one grading core, src/grading/grade.ts, on a GPU device of its own),
 // Cancel, Reset, Hints one at a time, export and import of all exercises' progress,
 // and the results with the student's values next to the reference's. Code, hints and
@@ -10,11 +9,11 @@
 // as <exercise-id>.wgsl, the file the Gradescope and PrairieLearn kits grade
 // (src/grading/kit/). Without WebGPU the editor, saving and downloading still work and
 // a notice says the checks need WebGPU.
-import { WidgetElement } from '../base/widgetElement.ts';
-import { ReadoutList } from '../base/readoutList.ts';
+import type { FrameBackend } from '../base/definition.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
 import type { ExerciseDefinition } from '../../grading/exercise.ts';
 import { SUBMISSION_RULES } from '../../grading/instrument.ts';
-import { EXERCISE_WIDGET } from './schema.ts';
+import { STATUS_WORDS, allPassed, type ExerciseFrame } from './widget.ts';
 import { createEditor, type ExerciseEditor } from './editor.ts';
 import { ResultView, outcomeSummary } from './resultView.ts';
 import { ExerciseRunner, WebGpuUnavailable, type RunOutcome } from './runner.ts';
@@ -33,6 +32,9 @@ import {
   type ExerciseProgress,
   type StoredResult,
 } from './progress.ts';
+
+/** The checks run on a GPU device of the exercise's own, not the page's. */
+const OWN_DEVICE: FrameBackend = { kind: 'gpu', adapterDescription: 'a device of its own' };
 
 /** Debounce of saving the code while typing. */
 const SAVE_DELAY_MS = 400;
@@ -56,18 +58,6 @@ function storage(): Storage | null {
   }
 }
 
-/** A non-graded outcome in a few words, for the readout and the stored summary. */
-const STATUS_WORDS: Record<StoredResult['status'], string> = {
-  graded: 'graded',
-  'compile-error': 'does not compile',
-  'wrong-signature': 'wrong signature',
-  'loop-budget': 'a loop ran past its budget',
-  rejected: 'refused before compiling',
-  timeout: 'timed out',
-  'device-lost': 'GPU device lost',
-  'internal-error': 'grader error',
-};
-
 function describeStored(result: StoredResult): string {
   const when = new Date(result.at).toLocaleString();
   if (result.status !== 'graded') return `Last run (${when}): ${STATUS_WORDS[result.status]}.`;
@@ -76,14 +66,11 @@ function describeStored(result: StoredResult): string {
     : `Last run (${when}): ${result.passed} of ${result.total} public checks passed (${result.score} of ${result.maxScore} points).`;
 }
 
-export class ExerciseElement extends WidgetElement {
-  protected readonly entry = EXERCISE_WIDGET;
-
+class ExerciseView implements WidgetView<ExerciseFrame> {
   private exerciseId = '';
   private exercise: ExerciseDefinition | null = null;
   private editor: ExerciseEditor | null = null;
   private results: ResultView | null = null;
-  private readout: ReadoutList | null = null;
   private statement: HTMLElement | null = null;
   private editorArea: HTMLElement | null = null;
   private hintList: HTMLOListElement | null = null;
@@ -99,26 +86,21 @@ export class ExerciseElement extends WidgetElement {
   private gpuStatus: HTMLElement | null = null;
   private started = false;
 
-  override connectedCallback(): void {
-    // Keep the statement the build rendered: the shell replaces the element's children.
-    const statement = this.querySelector<HTMLElement>('.sb-exercise-statement');
-    if (statement) this.statement = statement;
-    this.exerciseId = this.getAttribute('exercise') ?? '';
-    super.connectedCallback();
-    this.querySelector('.sb-widget')?.classList.add('sb-exercise-widget');
+  constructor(private readonly context: ViewContext) {
+    // The statement the build rendered inside the tag (the shell replaced the children).
+    this.statement =
+      context.content.find(
+        (child): child is HTMLElement =>
+          child instanceof HTMLElement && child.matches('.sb-exercise-statement'),
+      ) ?? null;
+    this.exerciseId = context.host.getAttribute('exercise') ?? '';
+  }
+
+  build(stage: HTMLElement): void {
+    const id = this.context.widgetId;
+    this.context.host.querySelector('.sb-widget')?.classList.add('sb-exercise-widget');
     window.addEventListener('pagehide', this.flushSave);
     window.addEventListener(IMPORTED_EVENT, this.onImported);
-  }
-
-  override disconnectedCallback(): void {
-    super.disconnectedCallback();
-    this.flushSave();
-    window.removeEventListener('pagehide', this.flushSave);
-    window.removeEventListener(IMPORTED_EVENT, this.onImported);
-  }
-
-  protected buildStage(stage: HTMLElement): void {
-    const id = this.widgetId;
     if (this.statement) stage.appendChild(this.statement);
 
     stage.append(this.buildGradingNote());
@@ -234,23 +216,27 @@ export class ExerciseElement extends WidgetElement {
     return note;
   }
 
-  protected buildReadout(readout: HTMLElement): void {
-    this.readout = new ReadoutList(readout, [
-      ['checks', 'Public checks'],
-      ['points', 'Points (public)'],
-    ]);
+  onDisconnected(): void {
+    this.flushSave();
+  }
+
+  destroy(): void {
+    this.flushSave();
+    this.running?.abort();
+    window.removeEventListener('pagehide', this.flushSave);
+    window.removeEventListener(IMPORTED_EVENT, this.onImported);
   }
 
   /** First time on screen: load the exercise, build the editor, check for WebGPU. */
-  protected async render(): Promise<void> {
-    if (this.started) return;
+  async renderWithoutBackend(): Promise<ExerciseFrame | null> {
+    if (this.started) return null;
     this.started = true;
     const exercise = await loadExerciseForPage(this.exerciseId);
     this.exercise = exercise;
-    const title = this.querySelector('.sb-widget-title');
+    const title = this.context.host.querySelector('.sb-widget-title');
     // The statement comes first and names the exercise; the header below it then
     // introduces the student's part. Without a statement, the title names the exercise.
-    const header = this.querySelector('.sb-widget-header');
+    const header = this.context.host.querySelector('.sb-widget-header');
     if (this.statement && header) header.before(this.statement);
     if (title)
       title.textContent = this.statement
@@ -263,6 +249,7 @@ export class ExerciseElement extends WidgetElement {
       result: null,
     };
     if (this.editorArea) {
+      const id = this.context.widgetId;
       this.editor = createEditor(
         this.editorArea,
         this.progress.code,
@@ -274,12 +261,13 @@ export class ExerciseElement extends WidgetElement {
       );
       this.editor.view.contentDOM.setAttribute(
         'aria-describedby',
-        `${this.widgetId}-editor-label ${this.widgetId}-keyhint`,
+        `${id}-editor-label ${id}-keyhint`,
       );
     }
     this.showHints();
     this.showStoredResult();
     await this.checkGpu();
+    return { result: this.progress.result };
   }
 
   /** Says up front, without creating a device, whether the checks can run here. */
@@ -299,7 +287,7 @@ export class ExerciseElement extends WidgetElement {
       this.gpuStatus.dataset['webgpu'] = reason ? 'no' : 'yes';
     }
     if (reason) {
-      this.showCpuFallbackNotice(
+      this.context.cpuFallbackNotice(
         reason,
         'The editor works, your code is saved in this browser and Download submission works, but running the checks needs WebGPU.',
       );
@@ -313,7 +301,7 @@ export class ExerciseElement extends WidgetElement {
   }
 
   private setCost(text: string): void {
-    if (this.readout) this.readout.cost.textContent = text;
+    this.context.setCost(text);
   }
 
   private scheduleSave(): void {
@@ -329,7 +317,7 @@ export class ExerciseElement extends WidgetElement {
     try {
       saveProgress(store, this.exercise.id, this.progress);
     } catch (error) {
-      this.showNotice(
+      this.context.showNotice(
         'save',
         'warning',
         `Your code could not be saved in this browser (${error instanceof Error ? error.message : String(error)}); export your progress to keep it.`,
@@ -367,31 +355,14 @@ export class ExerciseElement extends WidgetElement {
 
   private showStoredResult(): void {
     const result = this.progress.result;
-    if (!result) {
-      this.results?.clear();
-      this.readout?.set('checks', 'not run yet');
-      this.readout?.set('points', '—');
-      return;
-    }
-    const ok = result.status === 'graded' && result.passed === result.total;
-    this.results?.showMessage(describeStored(result), ok ? 'ok' : 'bad');
+    if (!result) this.results?.clear();
+    else this.results?.showMessage(describeStored(result), allPassed(result) ? 'ok' : 'bad');
     this.showScore(result);
   }
 
-  private showScore(result: StoredResult): void {
-    const ok = result.status === 'graded' && result.passed === result.total;
-    this.readout?.set(
-      'checks',
-      result.status === 'graded'
-        ? `${result.passed} of ${result.total} passed`
-        : STATUS_WORDS[result.status],
-      ok ? 'ok' : 'bad',
-    );
-    this.readout?.set(
-      'points',
-      result.status === 'graded' ? `${result.score} of ${result.maxScore}` : '0',
-      ok ? 'ok' : 'bad',
-    );
+  /** The readouts (widget.ts formats them) from a stored result. */
+  private showScore(result: StoredResult | null): void {
+    this.context.report({ result } satisfies ExerciseFrame, OWN_DEVICE);
   }
 
   private reset(): void {
@@ -409,17 +380,17 @@ export class ExerciseElement extends WidgetElement {
 
   /** The attribute timeout-ms overrides the core's watchdog (tests use a short one). */
   private timeoutMs(): number {
-    const value = Number(this.getAttribute('timeout-ms'));
+    const value = Number(this.context.host.getAttribute('timeout-ms'));
     return Number.isFinite(value) && value > 0 ? value : GRADE_TIMEOUT_MS;
   }
 
-  async runChecks(): Promise<void> {
+  private async runChecks(): Promise<void> {
     if (!this.exercise || !this.editor || this.running) return;
     if (this.gpuReason) return;
     const exercise = this.exercise;
     const controller = new AbortController();
     this.running = controller;
-    this.dataset['state'] = 'running';
+    this.context.host.dataset['state'] = 'running';
     if (this.runButton) this.runButton.disabled = true;
     if (this.cancelButton) this.cancelButton.hidden = false;
     if (this.progressBar) {
@@ -448,16 +419,16 @@ export class ExerciseElement extends WidgetElement {
     } catch (error) {
       const message = error instanceof Error ? error.message : String(error);
       if (error instanceof WebGpuUnavailable)
-        this.showCpuFallbackNotice(message, 'Checks need WebGPU.');
+        this.context.cpuFallbackNotice(message, 'Checks need WebGPU.');
       outcome = { status: 'error', message };
     }
     const elapsed = performance.now() - start;
     this.running = null;
-    this.dataset['state'] = outcome.status;
+    this.context.host.dataset['state'] = outcome.status;
     if (this.runButton) this.runButton.disabled = false;
     if (this.cancelButton) this.cancelButton.hidden = true;
     if (this.progressBar) this.progressBar.hidden = true;
-    this.recordFrameCost(elapsed, 'wall clock (compile + public checks + read-back)');
+    this.context.recordFrameCost(elapsed, 'wall clock (compile + public checks + read-back)');
     this.showOutcome(outcome, elapsed);
   }
 
@@ -486,7 +457,7 @@ export class ExerciseElement extends WidgetElement {
       `Public checks on the GPU: ${elapsed.toFixed(0)} ms wall clock (compile, run, read-back)${outcome.status === 'graded' ? `, seed ${outcome.seed}` : ''}.`,
     );
     const summary = outcomeSummary(outcome);
-    this.dataset['summary'] = summary.ok ? 'pass' : 'fail';
+    this.context.host.dataset['summary'] = summary.ok ? 'pass' : 'fail';
   }
 
   /** The editor's code as `<exercise-id>.wgsl`: the file the Gradescope and PrairieLearn kits grade. */
@@ -499,7 +470,7 @@ export class ExerciseElement extends WidgetElement {
     link.download = name;
     link.click();
     setTimeout(() => URL.revokeObjectURL(link.href), 10_000);
-    this.showNotice(
+    this.context.showNotice(
       'download',
       'info',
       `Saved your code as ${name}: hand in this file to your course's grader.`,
@@ -510,7 +481,7 @@ export class ExerciseElement extends WidgetElement {
   private exportProgress(): void {
     const store = storage();
     if (!store) {
-      this.showNotice(
+      this.context.showNotice(
         'export',
         'error',
         'This browser does not allow local storage; nothing to export.',
@@ -526,7 +497,7 @@ export class ExerciseElement extends WidgetElement {
     link.click();
     setTimeout(() => URL.revokeObjectURL(link.href), 10_000);
     const count = Object.keys(file.exercises).length;
-    this.showNotice(
+    this.context.showNotice(
       'export',
       'info',
       `Exported the progress of ${count} exercise${count === 1 ? '' : 's'}.`,
@@ -535,15 +506,19 @@ export class ExerciseElement extends WidgetElement {
   }
 
   /** Validates a progress file, then replaces the stored progress of every exercise in it. */
-  importProgress(text: string): void {
+  private importProgress(text: string): void {
     const parsed = parseProgressFile(text, exerciseIds());
     if (!parsed.ok) {
-      this.showNotice('import', 'error', `Nothing was imported. ${parsed.errors.join(' ')}`);
+      this.context.showNotice(
+        'import',
+        'error',
+        `Nothing was imported. ${parsed.errors.join(' ')}`,
+      );
       return;
     }
     const store = storage();
     if (!store) {
-      this.showNotice(
+      this.context.showNotice(
         'import',
         'error',
         'This browser does not allow local storage; nothing was imported.',
@@ -556,7 +531,7 @@ export class ExerciseElement extends WidgetElement {
     const skipped = parsed.unknownIds.length
       ? ` Skipped exercises this book does not have: ${parsed.unknownIds.join(', ')}.`
       : '';
-    this.showNotice(
+    this.context.showNotice(
       'import',
       'info',
       `Imported the progress of ${count} exercise${count === 1 ? '' : 's'}.${skipped}`,
@@ -578,6 +553,6 @@ export class ExerciseElement extends WidgetElement {
   };
 }
 
-export function defineExercise(): void {
-  if (!customElements.get('sb-exercise')) customElements.define('sb-exercise', ExerciseElement);
+export function createView(context: ViewContext): WidgetView<ExerciseFrame> {
+  return new ExerciseView(context);
 }
