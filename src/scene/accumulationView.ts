@@ -5,11 +5,15 @@
 // and one render pass; the bind group of an accumulation is made once.
 import { gpuCore } from '../gpu/core.ts';
 import { withErrorScopes } from '../gpu/errors.ts';
+import { wordsOf, writeStruct } from '../gpu/layout.ts';
+import { sceneDisplayKernel } from '../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { keepForPrint } from '../widgets/base/print.ts';
 import type { GpuAccumulation } from './gpuAccumulation.ts';
 
 const DISPLAY_KERNEL = 'kernels/scene-display.wesl';
+/** The display pass's uniform, laid out from its WGSL declaration. */
+const DISPLAY_PARAMS = sceneDisplayKernel.DisplayParams;
 
 export type AccumulationPicture =
   | {
@@ -75,7 +79,7 @@ export function canvasForContext(
 
 export class AccumulationView {
   private readonly uniform: GPUBuffer;
-  private readonly words = new ArrayBuffer(32);
+  private readonly words = wordsOf(new ArrayBuffer(DISPLAY_PARAMS.size));
   private readonly groups = new WeakMap<GPUBuffer, GPUBindGroup>();
   private last: { accumulation: GpuAccumulation; picture: AccumulationPicture } | null = null;
   private destroyed = false;
@@ -86,7 +90,7 @@ export class AccumulationView {
     private readonly display: DisplayPipeline,
   ) {
     this.uniform = device.createBuffer({
-      size: 32,
+      size: DISPLAY_PARAMS.size,
       usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
     });
   }
@@ -138,14 +142,17 @@ export class AccumulationView {
       });
       this.groups.set(accumulation.moments, group);
     }
-    const view = new DataView(this.words);
-    view.setUint32(0, accumulation.width, true);
-    view.setUint32(4, accumulation.height, true);
-    view.setUint32(8, picture.kind === 'radiance' ? 0 : 1, true);
-    view.setFloat32(16, picture.kind === 'radiance' ? 2 ** picture.exposure : 1, true);
-    view.setFloat32(20, accumulation.samples, true);
-    view.setFloat32(24, picture.kind === 'standard-error' ? picture.scale : 1, true);
-    device.queue.writeBuffer(this.uniform, 0, this.words);
+    const radiance = picture.kind === 'radiance';
+    const params = {
+      width: accumulation.width,
+      height: accumulation.height,
+      mode: radiance ? 0 : 1,
+      scale: radiance ? 2 ** picture.exposure : 1,
+      samples: accumulation.samples,
+      errorScale: picture.kind === 'standard-error' ? picture.scale : 1,
+    };
+    writeStruct(DISPLAY_PARAMS, params, this.words);
+    device.queue.writeBuffer(this.uniform, 0, this.words.u32);
     const encoder = device.createCommandEncoder();
     const pass = encoder.beginRenderPass({
       colorAttachments: [
