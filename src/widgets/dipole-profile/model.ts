@@ -55,31 +55,9 @@ export interface ProfileInputs {
   seed: number;
 }
 
-const COEFFICIENT_KEYS = [
-  'sigma-s-r',
-  'sigma-s-g',
-  'sigma-s-b',
-  'sigma-a-r',
-  'sigma-a-g',
-  'sigma-a-b',
-];
-/** The parameters a material sets (editing one by hand makes the material "manual"). */
-export const MATERIAL_PARAMETERS = [...COEFFICIENT_KEYS, 'eta'] as const;
-
-/** The slider values of a preset material. */
-export function materialValues(name: string): Record<string, number> | null {
-  const m = findMaterial(name);
-  if (!m) return null;
-  return {
-    'sigma-s-r': m.sigmaSPrime[0],
-    'sigma-s-g': m.sigmaSPrime[1],
-    'sigma-s-b': m.sigmaSPrime[2],
-    'sigma-a-r': m.sigmaA[0],
-    'sigma-a-g': m.sigmaA[1],
-    'sigma-a-b': m.sigmaA[2],
-    eta: m.eta,
-  };
-}
+// The material presets' slider values live in materialValues.ts (free of GPU code, so
+// that widget.ts can build the presets from them); re-exported for model's callers.
+export { MATERIAL_PARAMETERS, materialValues } from './materialValues.ts';
 
 export function inputsFrom(values: ParameterValues): ProfileInputs {
   const material = String(values['material']);
