@@ -43,13 +43,18 @@ function byteSize(words: number): number {
   return Math.max(4, words * 4);
 }
 
-export async function runCompute(device: GPUDevice, job: ComputeJob): Promise<ComputeResult> {
+export function runCompute(device: GPUDevice, job: ComputeJob): Promise<ComputeResult> {
   const entryPoint = job.entryPoint ?? 'main';
-  const what = `compute "${entryPoint}"`;
-  const pipeline = await withErrorScopes(device, what, () =>
-    gpuCore(device).computePipeline({ code: job.code, entryPoint }),
+  // The pipeline is looked up inside the dispatch's error scopes: one set of scopes
+  // per call (each pop waits on the device).
+  return dispatch(
+    device,
+    () => gpuCore(device).computePipeline({ code: job.code, entryPoint }),
+    job,
+    {
+      what: `compute "${entryPoint}"`,
+    },
   );
-  return runPipeline(device, pipeline, job, { what });
 }
 
 /**
@@ -57,9 +62,18 @@ export async function runCompute(device: GPUDevice, job: ComputeJob): Promise<Co
  * uniforms) once and reads the output back. Errors of the dispatch throw a GpuError
  * with their kind; `options.wait` wraps every wait on the device.
  */
-export async function runPipeline(
+export function runPipeline(
   device: GPUDevice,
   pipeline: GPUComputePipeline,
+  job: PipelineJob,
+  options: DispatchOptions,
+): Promise<ComputeResult> {
+  return dispatch(device, () => pipeline, job, options);
+}
+
+async function dispatch(
+  device: GPUDevice,
+  pipelineFor: () => GPUComputePipeline,
   job: PipelineJob,
   options: DispatchOptions,
 ): Promise<ComputeResult> {
@@ -71,6 +85,7 @@ export async function runPipeline(
       device,
       options.what,
       () => {
+        const pipeline = pipelineFor();
         // Pooled buffers hold the previous job's data: every bound byte past the data
         // is cleared, so kernels see zeros as in new buffers (an output only partly
         // written, or accumulated into with atomics).
@@ -84,11 +99,11 @@ export async function runPipeline(
           );
           return { binding, buffer: upload, size };
         });
+        // Cleared in the dispatch's own encoder (no extra submit).
         const output = lease.buffer(
           'compute.output',
           outputSize,
-          GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC,
-          true,
+          GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
         );
         entries.push({ binding: job.inputs.length, buffer: output, size: outputSize });
         if (job.uniforms) {
@@ -108,6 +123,7 @@ export async function runPipeline(
         );
         const bindGroup = core.bufferBindGroup(pipeline, entries);
         const encoder = device.createCommandEncoder();
+        encoder.clearBuffer(output, 0, outputSize);
         const pass = encoder.beginComputePass(timer?.passDescriptor() ?? {});
         pass.setPipeline(pipeline);
         pass.setBindGroup(0, bindGroup);
