@@ -149,6 +149,16 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     this.view?.buildReadoutExtras?.(area);
   }
 
+  /** A preset, keeping the parameters the definition says presets keep (presetKeeps). */
+  protected override applyPreset(index: number): void {
+    const kept = (this.definition.presetKeeps ?? []).map(
+      (name) => [name, this.values[name]] as const,
+    );
+    super.applyPreset(index);
+    for (const [name, value] of kept)
+      if (value !== undefined && this.values[name] !== value) super.setValue(name, String(value));
+  }
+
   /** A reader's input through a control, then the view's linked parameters (valueChanged). */
   protected override setValue(name: string, raw: string): void {
     super.setValue(name, raw);
@@ -191,6 +201,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       },
       scheduleRender: () => this.scheduleRender(),
       setValue: (name, raw) => super.setValue(name, raw),
+      applyPreset: (index) => this.applyPreset(index),
       report: (frame, backend) => this.report(frame as Frame, backend),
       showNotice: (key, kind, message, timeoutMs) => this.showNotice(key, kind, message, timeoutMs),
       clearNotice: (key) => this.clearNotice(key),

@@ -70,6 +70,11 @@ export interface WidgetDefinition<Frame = unknown> {
   /** The schema: name (the element is `sb-<name>`), title, parameters. */
   entry: WidgetEntry;
   presets?: readonly Preset[];
+  /**
+   * Parameters a preset leaves as they are (presets that are, say, transfer functions
+   * keep the camera and the step).
+   */
+  presetKeeps?: readonly string[];
   /** Readout rows filled by the base element from each rendered frame. */
   readouts?: Readouts<Frame>;
   /** Deck slides, in the order the lecture shows them. */

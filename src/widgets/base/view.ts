@@ -59,6 +59,8 @@ export interface ViewContext<Renderer = unknown> {
    * call the view's `valueChanged`, so a view can set linked parameters from there.
    */
   setValue(name: string, raw: string): void;
+  /** Recalls preset `index` (0-based), as its number key does (for the view's own preset buttons). */
+  applyPreset(index: number): void;
   /**
    * Fills the readouts and the cost line from a frame outside render(), e.g. from each
    * step of a long job (the escape hatch: render() starts the job and returns null).

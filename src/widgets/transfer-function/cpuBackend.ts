@@ -2,7 +2,7 @@
 // interface (FrameRenderer): the GPU kernel (gpuBackend.ts, bands read back into
 // the full image) and, without WebGPU, the float64 twin in model.ts at
 // CPU_SIZE² pixels. Also the painting of images into 2D canvases.
-import { timingLabel } from '../base/timing.ts';
+import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import type { Rgb } from '../base/imagePanel.ts';
 import type { VolumeRendererGpu } from './gpuBackend.ts';
 import {
@@ -16,8 +16,9 @@ import {
 
 export interface RowsCost {
   milliseconds: number;
-  /** How the time was measured, for the readout. */
+  /** How the time was measured, for the readout (timingLabel of `timing`). */
   how: string;
+  timing: GpuTiming | 'cpu';
 }
 
 export interface FrameRenderer {
@@ -56,7 +57,11 @@ export class CpuRenderer implements FrameRenderer {
   ): Promise<RowsCost> {
     const start = performance.now();
     renderRowsCpu(image, inputs, stepVoxels, threshold, rowStart, rowEnd);
-    return Promise.resolve({ milliseconds: performance.now() - start, how: timingLabel('cpu') });
+    return Promise.resolve({
+      milliseconds: performance.now() - start,
+      how: timingLabel('cpu'),
+      timing: 'cpu',
+    });
   }
 }
 
@@ -98,7 +103,7 @@ export class GpuRenderer implements FrameRenderer {
     image.plannedSteps += band.plannedSteps;
     image.terminatedRays += band.terminatedRays;
     image.cappedRays += band.cappedRays;
-    return { milliseconds: band.milliseconds, how: timingLabel(band.timing) };
+    return { milliseconds: band.milliseconds, how: timingLabel(band.timing), timing: band.timing };
   }
 }
 

@@ -19,7 +19,7 @@ import {
 } from '../../reference/volume.ts';
 import type { ParameterValues } from '../parameters.ts';
 import { interpolate, type Rgb } from '../base/imagePanel.ts';
-import { CONTROL_POINTS, DEFAULT_POINTS } from './schema.ts';
+import { CONTROL_POINTS } from './schema.ts';
 import {
   CT_RESCALE_INTERCEPT,
   PHANTOM_HALF_EXTENT,
@@ -107,66 +107,9 @@ export const COLOUR_MAPS: Readonly<Record<string, ColourMap>> = {
   },
 };
 
-/** Presets in Hounsfield units: the control points (value, opacity) and a colour map. */
-export interface TransferPreset {
-  label: string;
-  points: readonly (readonly [number, number])[];
-  colormap: string;
-}
-
-export const TRANSFER_PRESETS: readonly TransferPreset[] = [
-  {
-    label: 'soft tissue + bone',
-    points: DEFAULT_POINTS,
-    colormap: 'tissue',
-  },
-  {
-    label: 'skin (air/tissue surface at −500 HU)',
-    points: [
-      [-1024, 0],
-      [-700, 0],
-      [-450, 0.4],
-      [100, 0.5],
-      [1000, 0.6],
-      [3071, 0.6],
-    ],
-    colormap: 'tissue',
-  },
-  {
-    label: 'bone (> 300 HU)',
-    points: [
-      [-1024, 0],
-      [0, 0],
-      [250, 0],
-      [700, 0.7],
-      [1500, 0.7],
-      [3071, 0.7],
-    ],
-    colormap: 'bone',
-  },
-  {
-    label: 'lesions (+30 HU window)',
-    points: [
-      [-1024, 0],
-      [22, 0],
-      [27, 0.25],
-      [33, 0.25],
-      [37, 0],
-      [3071, 0],
-    ],
-    colormap: 'viridis',
-  },
-];
-
-/** The parameter values of a preset (control points and colour map). */
-export function presetValues(preset: TransferPreset): ParameterValues {
-  const values: ParameterValues = { colormap: preset.colormap };
-  preset.points.forEach(([hu, opacity], index) => {
-    values[`hu-${index + 1}`] = hu;
-    values[`opacity-${index + 1}`] = opacity;
-  });
-  return values;
-}
+// The transfer-function presets live in presets.ts (free of the volume code, so that
+// widget.ts can list them); re-exported for model's callers.
+export { TRANSFER_PRESETS, presetValues, type TransferPreset } from './presets.ts';
 
 /**
  * The control points from the parameters (each already clamped to its range), in
