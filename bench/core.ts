@@ -38,10 +38,16 @@ export async function benchCore(
   options: { calls: number; repeats: number },
 ): Promise<BenchTable> {
   const input = new Uint32Array(WORDS).map((_, i) => i);
-  const job = { code: CODE, inputs: [input], outputWords: WORDS, workgroups: [WORDS / 64] as [number] };
+  const job = {
+    code: CODE,
+    inputs: [input],
+    outputWords: WORDS,
+    workgroups: [WORDS / 64] as [number],
+  };
   // Compile once and check the answer before timing.
   const first = await runCompute(device, job);
-  if (first.output[10] !== 31) throw new Error(`core bench kernel gave ${first.output[10]}, not 31`);
+  if (first.output[10] !== 31)
+    throw new Error(`core bench kernel gave ${first.output[10]}, not 31`);
   const rates: number[] = [];
   let perCall = { buffers: 0, querySets: 0 };
   for (let r = 0; r < options.repeats; r++) {
