@@ -53,7 +53,9 @@ const renderedCount = (page: Page, name: string): Promise<number> =>
     .evaluate((element) => Number((element as HTMLElement).dataset['rendered'] ?? '0'));
 
 test('every widget draws again after it is moved to another parent', async ({ page }) => {
-  test.setTimeout(180_000);
+  // Two frames per widget, one after the other; the path tracers' first frames are the
+  // longest (each poll below still fails a widget that stops drawing after 30 s).
+  test.setTimeout(NAMES.length * 40_000);
   const errors = trackErrors(page);
   await openAllWidgets(page);
   for (const name of NAMES) {
