@@ -73,14 +73,23 @@ async function loadPage(browser: Browser, base: string, dist: string, path: stri
       .map((el) => el.localName)
       .filter((name) => name.startsWith('sb-') && name !== 'sb-exercise'),
   );
+  // Each widget fetches its modules, data and kernels when it first draws: scroll it into
+  // view and wait for its first frame.
   for (const [index] of widgets.entries()) {
-    await page.evaluate((i) => {
+    const handle = await page.evaluateHandle((i) => {
       const all = [...document.querySelectorAll('*')].filter(
         (el) => el.localName.startsWith('sb-') && el.localName !== 'sb-exercise',
       );
       all[i]?.scrollIntoView();
+      return all[i] ?? null;
     }, index);
-    await page.waitForTimeout(300);
+    await page
+      .waitForFunction(
+        (el) => el !== null && Number((el as HTMLElement).dataset['rendered'] ?? 0) > 0,
+        handle,
+        { timeout: 120_000 },
+      )
+      .catch(() => console.error(`bench: widget ${index} on ${path} never drew`));
   }
   await page.waitForLoadState('networkidle');
   await context.close();

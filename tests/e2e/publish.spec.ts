@@ -236,20 +236,22 @@ test('the link checker catches a link that escapes the base path and a missing f
 });
 
 /**
- * The figures that fetch files of the site at run time: their element calls siteUrl
- * (src/widgets/base/siteUrl.ts). They fetch when they first draw, so the browser pass
- * scrolls them into view; every other figure's code, shaders and styles are loaded
- * with the page.
+ * The figures that fetch files of the site at run time: those whose code calls siteUrl
+ * (src/widgets/base/siteUrl.ts: data sets, scenes) and every figure that draws with a
+ * kernel from the build's static WGSL files (src/gpu/staticKernels.ts, fetched through
+ * siteUrl). They fetch when they first draw, so the browser pass scrolls them into
+ * view; an exercise fetches nothing until its checks run.
  */
 const FETCHING_WIDGETS = readdirSync(join(ROOT, 'src/widgets'), { withFileTypes: true })
-  .filter(
-    (entry) =>
-      entry.isDirectory() &&
-      existsSync(join(ROOT, 'src/widgets', entry.name, 'element.ts')) &&
-      readFileSync(join(ROOT, 'src/widgets', entry.name, 'element.ts'), 'utf8').includes(
-        'siteUrl(',
-      ),
-  )
+  .filter((entry) => {
+    const folder = join(ROOT, 'src/widgets', entry.name);
+    if (!entry.isDirectory() || !existsSync(join(folder, 'widget.ts'))) return false;
+    return readdirSync(folder)
+      .filter((name) => name.endsWith('.ts'))
+      .some((name) =>
+        /siteUrl\(|staticKernels|prelinked/.test(readFileSync(join(folder, name), 'utf8')),
+      );
+  })
   .map((entry) => `sb-${entry.name}`);
 
 /**
