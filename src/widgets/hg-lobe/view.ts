@@ -13,18 +13,22 @@ import { drawLobeCpu, sampleHistogramCpu, sampleHistogramCpuInChunks } from './c
 import { HgLobeGpu } from './gpuBackend.ts';
 import { LobeView } from './lobeView.ts';
 import {
+  ALPHA,
   BIN_COUNT,
   CPU_TIMING_CAP,
   SWEEP_EXPONENTS,
   SWEEP_REPETITIONS,
   binEdge,
+  chiSquareTest,
   comparePhase,
   expectedHistogramL1,
   hgBinProbabilities,
   histogramL1,
   inputsFrom,
+  meanCosine,
   median,
   polarLayout,
+  sphereIntegral,
   type HgHistogram,
   type HgLobeInputs,
   type PolarLayout,
@@ -116,11 +120,30 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
     };
   };
 
+  /** The frame: the histograms, the averaged time and the checks of the readouts. */
   const frameOf = (
     inputs: HgLobeInputs,
     histogram: HgHistogram,
     replay: HgHistogram,
-  ): HgLobeFrame => ({ inputs, histogram, replay, ...averageTime(histogram) });
+  ): HgLobeFrame => {
+    const g = inputs.g;
+    let moved = 0;
+    for (let k = 0; k < BIN_COUNT; k++)
+      moved += Math.abs((histogram.bins[k] ?? 0) - (replay.bins[k] ?? 0));
+    return {
+      inputs,
+      histogram,
+      replay,
+      ...averageTime(histogram),
+      integral: sphereIntegral((mu) => hgEval(g, mu)),
+      forward: hgEval(g, 1),
+      backward: hgEval(g, -1),
+      mean: meanCosine(histogram, g),
+      chi: chiSquareTest(histogram.bins, hgBinProbabilities(g), histogram.sampleCount),
+      alpha: ALPHA,
+      moved: moved / 2,
+    };
+  };
 
   /**
    * Error against time for N = 2¹⁰ … 2²⁰ (the inputs of the moment the sweep starts):

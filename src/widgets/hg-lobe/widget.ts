@@ -7,23 +7,14 @@
 // the histogram's L1 error against the sampling time, next to its exact expectation.
 import { defineWidget, type FrameBackend } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { hgEval } from '../../reference/phase.ts';
 import { HG_LOBE } from './schema.ts';
-import {
-  ALPHA,
-  BIN_COUNT,
-  chiSquareTest,
-  hgBinProbabilities,
-  meanCosine,
-  sphereIntegral,
-  type HgHistogram,
-  type HgLobeInputs,
-} from './model.ts';
+import type { ChiSquareResult, HgHistogram, HgLobeInputs, MeanCosine } from './model.ts';
 
 /**
  * One frame: the inputs, the backend's histogram, the float64 replay of the same
  * streams (the histogram itself on the CPU, its first 2¹⁶ samples next to the GPU),
- * and the sampling time averaged over recent frames at this N.
+ * the sampling time averaged over recent frames at this N, and the checks the view
+ * computed (model.ts stays out of widget.ts, which every page loads).
  */
 export interface HgLobeFrame {
   inputs: HgLobeInputs;
@@ -31,6 +22,17 @@ export interface HgLobeFrame {
   replay: HgHistogram;
   averageMs: number;
   averagedFrames: number;
+  /** ∫ p dω by float64 quadrature. */
+  integral: number;
+  /** p at θ = 0° and 180° (sr⁻¹). */
+  forward: number;
+  backward: number;
+  mean: MeanCosine;
+  chi: ChiSquareResult;
+  /** The χ² test's significance level. */
+  alpha: number;
+  /** Samples in a different bin than the float64 replay (equal sample counts only). */
+  moved: number;
 }
 
 export const COMPARE_NAMES = { none: '', isotropic: 'isotropic', rayleigh: 'Rayleigh' } as const;
@@ -44,14 +46,10 @@ export function superscript(value: number): string {
 }
 
 /** How far the GPU's bins are from the float64 replay of the same streams. */
-function replayValue({ histogram, replay }: HgLobeFrame, backend: FrameBackend) {
+function replayValue({ histogram, replay, moved }: HgLobeFrame, backend: FrameBackend) {
   if (backend.kind !== 'gpu') return 'this is the float64 replay (CPU fallback)';
   if (replay.sampleCount !== histogram.sampleCount)
     return 'replayed on the CPU for the first 2¹⁶ samples only (timing)';
-  let moved = 0;
-  for (let k = 0; k < BIN_COUNT; k++)
-    moved += Math.abs((histogram.bins[k] ?? 0) - (replay.bins[k] ?? 0));
-  moved /= 2;
   return {
     text:
       moved === 0
@@ -75,47 +73,36 @@ export const widget = defineWidget<HgLobeFrame>({
       {
         key: 'normalisation',
         label: '∫ p dω (float64 quadrature)',
-        format: ({ inputs }) => {
-          const integral = sphereIntegral((mu) => hgEval(inputs.g, mu));
-          return {
-            text: integral.toFixed(10),
-            state: Math.abs(integral - 1) < 1e-9 ? 'ok' : 'bad',
-          };
-        },
+        format: ({ integral }) => ({
+          text: integral.toFixed(10),
+          state: Math.abs(integral - 1) < 1e-9 ? 'ok' : 'bad',
+        }),
       },
       {
         key: 'forward',
         label: 'p(θ = 0°), forward',
-        format: ({ inputs }) => `${formatNumber(hgEval(inputs.g, 1))} sr⁻¹`,
+        format: ({ forward }) => `${formatNumber(forward)} sr⁻¹`,
       },
       {
         key: 'backward',
         label: 'p(θ = 180°), backward',
-        format: ({ inputs }) => `${formatNumber(hgEval(inputs.g, -1))} sr⁻¹`,
+        format: ({ backward }) => `${formatNumber(backward)} sr⁻¹`,
       },
       {
         key: 'mean-cosine',
         label: 'Sample mean cosine ± SE',
-        format: ({ inputs, histogram }) => {
-          const mean = meanCosine(histogram, inputs.g);
-          return {
-            text: `${formatNumber(mean.mean, 5)} ± ${formatNumber(mean.standardError, 2)} (g = ${formatNumber(inputs.g, 4)}, ${formatNumber(Math.abs(mean.zScore), 2)} SE)`,
-            state: Math.abs(mean.zScore) < 5 ? 'ok' : 'bad',
-          };
-        },
+        format: ({ inputs, mean }) => ({
+          text: `${formatNumber(mean.mean, 5)} ± ${formatNumber(mean.standardError, 2)} (g = ${formatNumber(inputs.g, 4)}, ${formatNumber(Math.abs(mean.zScore), 2)} SE)`,
+          state: Math.abs(mean.zScore) < 5 ? 'ok' : 'bad',
+        }),
       },
       {
         key: 'chi-square',
         label: 'χ² of 64 bins vs closed form',
-        format: ({ inputs, histogram }) => {
-          const chi = chiSquareTest(
-            histogram.bins,
-            hgBinProbabilities(inputs.g),
-            histogram.sampleCount,
-          );
+        format: ({ chi, alpha }) => {
           const pooled = chi.pooled > 0 ? `, ${chi.pooled} sparse bins pooled` : '';
           return {
-            text: `${formatNumber(chi.statistic, 4)} (df ${chi.df}${pooled}): ${chi.passes ? 'passes' : 'fails'} at α = ${ALPHA} (critical ${formatNumber(chi.critical, 4)})`,
+            text: `${formatNumber(chi.statistic, 4)} (df ${chi.df}${pooled}): ${chi.passes ? 'passes' : 'fails'} at α = ${alpha} (critical ${formatNumber(chi.critical, 4)})`,
             state: chi.passes ? 'ok' : 'bad',
           };
         },
