@@ -18,6 +18,10 @@ import type { ParameterValues } from '../parameters.ts';
 // free of the DOM (widget.ts imports it, and Node imports every widget.ts).
 import { logLogSlope } from '../../statistics/regression.ts';
 import type { SweepPoint } from '../base/sweep.ts';
+import { CANVAS_HEIGHT, CANVAS_WIDTH, FIT_FROM_STEPS, REFERENCE_STEPS } from './constants.ts';
+
+// The constants widget.ts needs live in constants.ts (every page loads widget.ts, not this).
+export { CANVAS_HEIGHT, CANVAS_WIDTH, FIT_FROM_STEPS, REFERENCE_STEPS };
 
 /** Earth radius and top of the atmosphere (m), Bruneton & Neyret 2008. */
 export const EARTH_RADIUS = 6360e3;
@@ -33,8 +37,6 @@ export const BETA_RAYLEIGH = [5.8e-6, 13.5e-6, 33.1e-6] as const;
 export const FIELD_OF_VIEW_DEG = 120;
 export const ELEVATION_MIN_DEG = -5;
 export const ELEVATION_MAX_DEG = 85;
-export const CANVAS_WIDTH = 640;
-export const CANVAS_HEIGHT = 480;
 /** Apparent angular radius of the sun (°), drawn enlarged ×4 so it is several pixels wide. */
 export const SUN_RADIUS_DEG = 0.27;
 export const SUN_ENLARGEMENT = 4;
@@ -42,8 +44,6 @@ export const SUN_ENLARGEMENT = 4;
 export const EXPOSURE_BASE = 30;
 /** Hard caps of the kernel's loops (N ≤ 128 view samples, M ≤ 32 sun samples). */
 export const MAX_STEPS = 128;
-/** Step count of the converged float64 reference (view and sun rays). */
-export const REFERENCE_STEPS = 1024;
 
 export interface SkyInputs {
   sunElevationDeg: number;
@@ -318,12 +318,6 @@ export function probeError(
 
 /** The view-ray sample counts N of the convergence sweep (M = sunStepsFor(N) with each). */
 export const SWEEP_STEPS = [4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128] as const;
-/**
- * The fits use N ≥ 16 only. Below it the sun ray keeps M = 4 samples, so its
- * midpoint error stops falling and the curve flattens (≈ 2–3 % at 20–30° from
- * N = 8 to 16); from N = 16 on, M = N/4 and both rules refine together.
- */
-export const FIT_FROM_STEPS = 16;
 
 export interface SweepFit {
   /** p in error ∝ N^p: −2 for the midpoint rule on a smooth integrand (physics.md §3). */

@@ -27,6 +27,7 @@ import {
   probeError,
   probesFor,
   referenceProbesAsync,
+  relativeError,
   srgbEncode,
   sunStepsFor,
   type SkyInputs,
@@ -151,6 +152,18 @@ export function createView(
     const times = [...(frameTimes.get(key) ?? []), milliseconds].slice(-FRAME_HISTORY);
     frameTimes.set(key, times);
     return { milliseconds: median(times), frames: times.length };
+  };
+
+  /** The probes' errors against the float64 reference, computed once per (sun elevation, scattering) and cached; never per frame. */
+  const compared = async (
+    inputs: SkyInputs,
+    probes: SkyProbes,
+  ): Promise<{ errors: (number | null)[]; rms: number | null }> => {
+    const reference = await referenceProbesAsync(inputs);
+    return {
+      errors: probes.radiance.map((rgb, k) => relativeError(rgb, reference.radiance[k]!)),
+      rms: probeError(probes, reference),
+    };
   };
 
   /** One timed panorama at inputs.steps, with the pass count learned for that N. */
@@ -329,8 +342,7 @@ export function createView(
           passes: frame.passes,
           timing: frame.timing,
         },
-        // Computed once per (sun elevation, scattering) and cached; never per frame.
-        reference: await referenceProbesAsync(inputs),
+        ...(await compared(inputs, probes)),
       };
     },
     async renderCpu() {
@@ -352,7 +364,7 @@ export function createView(
           passes: 1,
           timing: 'cpu',
         },
-        reference: await referenceProbesAsync(inputs),
+        ...(await compared(inputs, probes)),
       };
     },
     onCpuFallback: () => sweep?.cancel('stopped: the GPU was lost'),

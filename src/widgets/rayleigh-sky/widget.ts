@@ -9,17 +9,8 @@ import { defineWidget } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { RAYLEIGH_SKY } from './schema.ts';
-import {
-  CANVAS_HEIGHT,
-  CANVAS_WIDTH,
-  FIT_FROM_STEPS,
-  REFERENCE_STEPS,
-  probeError,
-  relativeError,
-  type Rgb,
-  type SkyInputs,
-  type SkyProbes,
-} from './model.ts';
+import { CANVAS_HEIGHT, CANVAS_WIDTH, FIT_FROM_STEPS, REFERENCE_STEPS } from './constants.ts';
+import type { Rgb, SkyInputs, SkyProbes } from './model.ts';
 
 export type SkyTiming = GpuTiming | 'cpu';
 
@@ -46,8 +37,10 @@ export interface RayleighSkyFrame {
     passes: number;
     timing: SkyTiming;
   };
-  /** Float64, N = M = REFERENCE_STEPS, computed once per sun elevation and cached. */
-  reference: SkyProbes;
+  /** Relative error of each probe against the cached float64 reference (null: no light). */
+  errors: (number | null)[];
+  /** Relative RMS error of the probes (null: no light). */
+  rms: number | null;
 }
 
 function formatRgb(rgb: Rgb, digits = 4): string {
@@ -66,15 +59,11 @@ function probeRow(k: number) {
   };
 }
 
-function errorText({ probes, reference }: RayleighSkyFrame): string {
-  const errors = PROBE_KEYS.map((_, k) =>
-    relativeError(probes.radiance[k]!, reference.radiance[k]!),
-  );
+function errorText({ errors, rms }: RayleighSkyFrame): string {
   const worst = errors.reduce<number | null>(
     (a, b) => (b === null ? a : Math.max(a ?? 0, b)),
     null,
   );
-  const rms = probeError(probes, reference);
   return (
     `${formatPercent(worst)} (zenith ${formatPercent(errors[0]!)}, toward ${formatPercent(errors[1]!)}, away ${formatPercent(errors[2]!)})` +
     (rms === null ? '' : `; relative RMS ${formatPercent(rms)}`)
