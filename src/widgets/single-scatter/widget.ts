@@ -12,7 +12,6 @@ import { defineWidget } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
 import type { PassTiming } from '../../scene/render.ts';
-import { REFERENCE_FACTOR } from './model.ts';
 import { SINGLE_SCATTER } from './schema.ts';
 
 /** Timed passes per kernel for the specialized-versus-general comparison (median). */
@@ -164,8 +163,12 @@ export const widget = defineWidget<SingleScatterFrame>({
       },
     ],
     cost: ({ lastFrameMs, timing }) => ({ milliseconds: lastFrameMs, timing }),
-    costLine: ({ width, height, samples, elapsedMs, timing, times }, how, backend) =>
-      `${backend.kind === 'cpu' ? 'the float64 twin, ' : ''}${width}×${height} pixels, ${samples} spp in ${formatMilliseconds(elapsedMs)} of ${timing === 'cpu' ? 'CPU' : 'GPU'} time (${how}). Reference: ${REFERENCE_FACTOR}× the target samples with an independent seed, computed once per scene${times ? `; kernels timed over ${TIMING_REPEATS} passes of ${times.samples} spp each, median` : ''}.`,
+    costLine: (
+      { width, height, samples, target, reference, elapsedMs, timing, times },
+      how,
+      backend,
+    ) =>
+      `${backend.kind === 'cpu' ? 'the float64 twin, ' : ''}${width}×${height} pixels, ${samples} spp in ${formatMilliseconds(elapsedMs)} of ${timing === 'cpu' ? 'CPU' : 'GPU'} time (${how}). Reference: ${reference.target / target}× the target samples with an independent seed, computed once per scene${times ? `; kernels timed over ${TIMING_REPEATS} passes of ${times.samples} spp each, median` : ''}.`,
   },
   slides: [
     {
