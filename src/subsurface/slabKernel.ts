@@ -11,9 +11,9 @@
 // the batch means when every batch has the same size and stays valid when progressive
 // runs append batches of another size.
 import { runCompute } from '../gpu/compute.ts';
-import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { packStruct } from '../gpu/layout.ts';
 import { slabKernel } from '../gpu/layouts.generated.ts';
+import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { rngSeed } from '../reference/rng.ts';
 import {
   SLAB_EXIT_BOTTOM,
