@@ -6,8 +6,6 @@ import { runCompute } from '../../gpu/compute.ts';
 import type { GpuTiming } from './timing.ts';
 
 export type { GpuTiming };
-/** Moved to timing.ts; re-exported until every widget imports it from there. */
-export { timingLabel } from './timing.ts';
 
 /** Views of a fresh uniform block of `bytes` bytes, as u32 and as f32 words. */
 export function uniformWords(bytes: number): { u32: Uint32Array<ArrayBuffer>; f32: Float32Array } {

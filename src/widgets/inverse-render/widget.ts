@@ -2,19 +2,132 @@
 // hidden volume, from N training views and one held-out view, are rendered once by
 // the book's ray marcher; Start fits a grid of raw density and emission to the
 // training images with Adam, on the GPU (shaders/kernels/inverse-render.wesl) or,
-// without WebGPU, with the float64 twin in a Web Worker. Iterations run in batches,
-// one per animation frame, so the page stays live and Pause/Reset act at once. The
-// widget shows targets against the current fit, the held-out view with its error
-// image, the loss curve, the iteration rate and the GPU time per iteration.
-//
-// Not yet ported to a view: load() returns the widget's own element class, which
-// keeps its shell code (see /work/briefs/porting.md); the data below is already
-// the definition's (deck slides, schema).
-import { defineWidget } from '../base/definition.ts';
+// without WebGPU, with the float64 twin in a Web Worker. The training is a long job
+// (view.ts): it reports a frame after each batch of iterations.
+import { defineWidget, type FrameCost } from '../base/definition.ts';
+import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { INVERSE_RENDER } from './schema.ts';
 
-export const widget = defineWidget({
+/** What the readouts and the cost line need from the training's current state. */
+export interface InverseRenderFrame {
+  iteration: number;
+  /** The iteration budget (parameter `iterations`). */
+  budget: number;
+  /** Loss of the last iteration's batch; null before the first iteration. */
+  lastLoss: number | null;
+  /** Training MSE over all pixels at the last redraw, and at iteration 0. */
+  trainMse: number;
+  initialTrainMse: number;
+  /** First iteration where the mean of the last 10 losses is a tenth of the start. */
+  tenfoldAt: number | null;
+  /** Held-out view MSE at the last redraw. */
+  novelMse: number | null;
+  /** Iterations per second over the last few seconds; NaN when not running yet. */
+  rate: number;
+  /** Time per iteration over the same window (ms); null when no iterations in it. */
+  iterationMs: number | null;
+  /** How `iterationMs` was measured ('float64, CPU' or the GPU timing label). */
+  timing: string;
+  dropped: number;
+  /** The measured cost: per iteration once training ran, else the render of every view. */
+  cost: FrameCost;
+  resolution: number;
+  trainViews: number;
+  size: number;
+  steps: number;
+  rays: number;
+  learningRate: number;
+  regularizer: string;
+}
+
+export const widget = defineWidget<InverseRenderFrame>({
   entry: INVERSE_RENDER,
+  presets: [
+    { label: '8 views, 32³', values: { views: 8, grid: '32', regularizer: 'none' } },
+    { label: '3 views: ambiguity', values: { views: 3, regularizer: 'none' } },
+    { label: '1 view: no depth', values: { views: 1, regularizer: 'none' } },
+    { label: '8 views, 16³: fewer unknowns', values: { views: 8, grid: '16' } },
+    {
+      label: '8 views + smoothness prior',
+      values: { views: 8, regularizer: 'tv', weight: 0.001 },
+    },
+    {
+      label: '8 views + sparsity prior',
+      values: { views: 8, regularizer: 'sparsity', weight: 0.003 },
+    },
+  ],
+  readouts: {
+    rows: [
+      {
+        key: 'iteration',
+        label: 'Iteration',
+        format: (frame) => `${frame.iteration} of ${frame.budget}`,
+      },
+      {
+        key: 'loss',
+        label: 'Training loss (last batch, MSE)',
+        format: (frame) =>
+          frame.lastLoss === null ? 'press Start' : formatNumber(frame.lastLoss, 3),
+      },
+      {
+        key: 'train-mse',
+        label: 'Training MSE, all pixels',
+        format: (frame) => `${formatNumber(frame.trainMse, 3)} (at the last redraw)`,
+      },
+      {
+        key: 'reduction',
+        label: 'Reduction from the start',
+        format: (frame) => {
+          const text =
+            frame.iteration === 0
+              ? `start: ${formatNumber(frame.initialTrainMse, 3)}`
+              : `${formatNumber(frame.initialTrainMse / frame.trainMse, 3)}×${frame.tenfoldAt !== null ? `; 10× by iteration ${frame.tenfoldAt}` : ''}`;
+          return frame.tenfoldAt !== null ? { text, state: 'ok' } : text;
+        },
+      },
+      {
+        key: 'novel-mse',
+        label: 'Held-out view MSE (PSNR)',
+        format: (frame) =>
+          frame.novelMse === null
+            ? '—'
+            : `${formatNumber(frame.novelMse, 3)} (${formatNumber(10 * Math.log10(1 / frame.novelMse), 3)} dB)`,
+      },
+      {
+        key: 'rate',
+        label: 'Iterations per second',
+        format: (frame) =>
+          Number.isFinite(frame.rate) && frame.rate > 0
+            ? `${formatNumber(frame.rate, 3)} it/s`
+            : '—',
+      },
+      {
+        key: 'time',
+        label: 'Time per iteration',
+        // Over the same window as the rate: the time the iterations themselves took
+        // (GPU timestamps where available).
+        format: (frame) =>
+          frame.iterationMs === null
+            ? '—'
+            : `${formatMilliseconds(frame.iterationMs)} (${frame.timing})`,
+      },
+      {
+        key: 'dropped',
+        label: 'Dropped gradient adds',
+        format: (frame, backend) =>
+          backend.kind === 'cpu'
+            ? 'none: float64 sums, no atomics'
+            : { text: String(frame.dropped), state: frame.dropped > 0 ? 'bad' : 'ok' },
+      },
+    ],
+    cost: (frame) => frame.cost,
+    costLine: (frame, _how, backend) =>
+      `${backend.kind === 'cpu' ? 'the float64 twin, ' : ''}a ${frame.resolution}³ grid (${(4 * frame.resolution ** 3).toLocaleString('en')} parameters), ${frame.trainViews} training view${frame.trainViews === 1 ? '' : 's'} of ${frame.size}×${frame.size} pixels; each iteration marches ${frame.rays} rays × ${frame.steps} samples forward and backward, then Adam (η = ${frame.learningRate}, ${frame.regularizer}). ${
+        Number.isFinite(frame.rate) && frame.rate > 0
+          ? `${formatNumber(frame.rate, 3)} iterations/s. `
+          : ''
+      }Targets: the hidden volume, 192 samples per ray.`,
+  },
   slides: [
     {
       title: 'Inverse rendering: fit a grid to photographs',
@@ -39,5 +152,5 @@ export const widget = defineWidget({
       chapter: '08-inverse-volume-rendering',
     },
   ],
-  load: async () => ({ element: (await import('./element.ts')).InverseRenderElement }),
+  load: () => import('./view.ts'),
 });

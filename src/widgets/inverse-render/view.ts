@@ -1,0 +1,534 @@
+// The view of <sb-inverse-render>: the training views (target over current fit), the
+// held-out view with its error image, the run bar (Start/Pause, Reset, progress,
+// status) and the loss curve. Rendering sets up a trainer for the current problem
+// (GPU, or the float64 twin in a Web Worker); Start runs the training as a long job,
+// one batch of iterations per animation frame so that the page stays live and
+// Pause/Reset act at once, and each batch reports a frame to the readouts.
+import type { Backend } from '../base/backend.ts';
+import type { FrameBackend, FrameCost } from '../base/definition.ts';
+import { formatNumber } from '../base/format.ts';
+import { timingLabel } from '../base/timing.ts';
+import { gradientCss, imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
+import { LinePlot } from '../base/plot.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
+import { linkLibraryKernel } from '../../gpu/link.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
+import type { GpuContext } from '../../gpu/device.ts';
+import { CpuTrainer, errorColour, paintError, paintView } from './cpuBackend.ts';
+import { InverseTrainerGpu, KERNEL } from './gpuBackend.ts';
+import {
+  CPU_IMAGE_SIZE,
+  CPU_MAX_RESOLUTION,
+  NOVEL_ELEVATION,
+  effectiveBatch,
+  hyperFrom,
+  problemFrom,
+  problemKey,
+  viewError,
+  type Problem,
+  type Trainer,
+} from './model.ts';
+import type { InverseRenderFrame } from './widget.ts';
+
+/** Wall time one batch of iterations should take: long enough to amortize a submit, short enough to stay responsive. */
+const BATCH_TARGET_MS = 120;
+/** How often the views are re-rendered and read back during a run. */
+const REDRAW_MS = 700;
+/** Window of the iteration-rate readout. */
+const RATE_WINDOW_MS = 4000;
+/** Scale of the error image: |C − C*| of this size is the brightest colour. */
+const ERROR_SCALE_TOP = 0.25;
+
+const REGULARIZER_NAMES: Readonly<Record<string, string>> = {
+  none: 'no regularizer',
+  tv: 'total variation',
+  sparsity: 'sparsity prior',
+};
+
+/** The GPU renderer: the page's device (the trainer is built per problem). */
+interface GpuKernel {
+  gpu: GpuContext;
+}
+
+interface RateSample {
+  at: number;
+  iteration: number;
+  /** Time spent in iterations so far (GPU timestamps, else wall or CPU time), ms. */
+  spent: number;
+}
+
+export function createView(
+  context: ViewContext<GpuKernel>,
+): WidgetView<InverseRenderFrame, GpuKernel> {
+  let viewStrip: HTMLElement | null = null;
+  let viewCanvases: { target: HTMLCanvasElement; fit: HTMLCanvasElement }[] = [];
+  let novelTarget: HTMLCanvasElement | null = null;
+  let novelFit: HTMLCanvasElement | null = null;
+  let novelError: HTMLCanvasElement | null = null;
+  let novelCaption: HTMLElement | null = null;
+  let plot: LinePlot | null = null;
+  let plotArea: HTMLElement | null = null;
+  let plotHint: HTMLElement | null = null;
+  let startButton: HTMLButtonElement | null = null;
+  let resetButton: HTMLButtonElement | null = null;
+  let progress: HTMLProgressElement | null = null;
+  let status: HTMLElement | null = null;
+
+  let trainer: Trainer | null = null;
+  let trainerKey = '';
+  let frameBackend: FrameBackend = { kind: 'cpu', reason: '' };
+  let novelAzimuth = NaN;
+  let targets: ArrayLike<number> = [];
+  /** Loss of every iteration so far (before its update). */
+  let losses: number[] = [];
+  /** Held-out MSE measured after n updates, by n. */
+  let novelErrors = new Map<number, number>();
+  let initialTrainMse = NaN;
+  let trainMse = NaN;
+  let tenfoldAt: number | null = null;
+  let iteration = 0;
+  let dropped = 0;
+  let timing = '';
+  let spent = 0;
+  let rateSamples: RateSample[] = [];
+  /** The render of every view at set-up, then the time per iteration of the last batch. */
+  let cost: FrameCost = { milliseconds: NaN, timing: 'cpu' };
+  let running = false;
+  /** Bumped whenever the run must stop (reset, new problem, device loss, destroy). */
+  let token = 0;
+  let setupToken = 0;
+
+  const setStatus = (text: string): void => {
+    if (status) status.textContent = text;
+  };
+
+  const budget = (): number => Math.round(Number(context.values['iterations']));
+
+  function syncButtons(): void {
+    if (startButton) {
+      startButton.textContent = running ? 'Pause' : iteration > 0 ? 'Resume' : 'Start';
+      startButton.setAttribute('aria-pressed', String(running));
+      startButton.disabled = !trainer;
+    }
+    if (resetButton) resetButton.disabled = !trainer;
+    context.host.toggleAttribute('data-running', running);
+  }
+
+  /** Stops a run after its current batch; the fit is kept. */
+  function stop(message: string): void {
+    const wasRunning = running;
+    running = false;
+    token += 1;
+    if (wasRunning && message) setStatus(`Run ${message}.`);
+    syncButtons();
+  }
+
+  /** Discards the fit and starts from the initial grid (same problem). */
+  function reset(): void {
+    stop('');
+    trainerKey = '';
+    context.scheduleRender();
+  }
+
+  function frame(): InverseRenderFrame | null {
+    if (!trainer) return null;
+    const problem = trainer.problem;
+    const hyper = hyperFrom(context.values);
+    const first = rateSamples[0];
+    const latest = rateSamples[rateSamples.length - 1];
+    const rate =
+      first && latest && latest.at > first.at
+        ? ((latest.iteration - first.iteration) * 1000) / (latest.at - first.at)
+        : NaN;
+    const iterations = first && latest ? latest.iteration - first.iteration : 0;
+    return {
+      iteration,
+      budget: budget(),
+      lastLoss: losses[losses.length - 1] ?? null,
+      trainMse,
+      initialTrainMse,
+      tenfoldAt,
+      novelMse: novelErrors.get(iteration) ?? [...novelErrors.values()].pop() ?? null,
+      rate,
+      iterationMs:
+        first && latest && iterations > 0 ? (latest.spent - first.spent) / iterations : null,
+      timing,
+      dropped,
+      cost,
+      resolution: problem.resolution,
+      trainViews: problem.trainViews,
+      size: problem.size,
+      steps: problem.steps,
+      rays: effectiveBatch(hyper, problem.trainViews * problem.size * problem.size),
+      learningRate: hyper.learningRate,
+      regularizer: REGULARIZER_NAMES[String(context.values['regularizer'])] ?? '',
+    };
+  }
+
+  function buildViewCells(problem: Problem): void {
+    if (!viewStrip) return;
+    viewStrip.replaceChildren();
+    viewStrip.style.setProperty('--sb-ir-columns', String(Math.min(problem.trainViews, 8)));
+    viewCanvases = [];
+    for (let view = 0; view < problem.trainViews; view++) {
+      const cell = document.createElement('figure');
+      cell.className = 'sb-ir-view';
+      const target = imageCanvas(`Training view ${view + 1}: target`, problem.size, problem.size);
+      const fit = imageCanvas(`Training view ${view + 1}: current fit`, problem.size, problem.size);
+      target.classList.add('sb-ir-thumb');
+      fit.classList.add('sb-ir-thumb');
+      const caption = document.createElement('figcaption');
+      const degrees = Math.round((problem.views[view]!.azimuth * 180) / Math.PI) % 360;
+      caption.textContent = `${degrees}°`;
+      cell.append(target, fit, caption);
+      viewStrip.appendChild(cell);
+      viewCanvases.push({ target, fit });
+    }
+  }
+
+  /** Renders the current grid from every view, paints it and measures the errors. */
+  async function drawFit(): Promise<void> {
+    const current = trainer;
+    if (!current) return;
+    const problem = current.problem;
+    const started = performance.now();
+    const { image, gpuMs } = await current.render();
+    if (current !== trainer) return;
+    if (iteration === 0) {
+      // Before any iteration the frame's cost is this render of every view.
+      cost =
+        frameBackend.kind === 'cpu'
+          ? { milliseconds: performance.now() - started, timing: 'cpu' }
+          : gpuMs === null
+            ? { milliseconds: performance.now() - started, timing: 'gpu-wall' }
+            : { milliseconds: gpuMs, timing: 'gpu-timestamp' };
+    }
+    const pixels = problem.size * problem.size;
+    for (const [view, canvases] of viewCanvases.entries())
+      paintView(canvases.fit, image, view, problem.size);
+    let sum = 0;
+    for (let view = 0; view < problem.trainViews; view++)
+      sum += viewError(image, targets, view, pixels);
+    trainMse = sum / problem.trainViews;
+    const novel = viewError(image, targets, problem.trainViews, pixels);
+    novelErrors.set(iteration, novel);
+    if (novelFit) paintView(novelFit, image, problem.trainViews, problem.size);
+    if (novelError)
+      paintError(novelError, image, targets, problem.trainViews, problem.size, ERROR_SCALE_TOP);
+    if (novelCaption) {
+      const degrees = Math.round((problem.views[problem.trainViews]!.azimuth * 180) / Math.PI);
+      novelCaption.textContent = `Held-out view (azimuth ${degrees}°, ${Math.round((NOVEL_ELEVATION * 180) / Math.PI)}° above): MSE ${formatNumber(novel, 3)}`;
+    }
+    novelFit?.setAttribute(
+      'aria-label',
+      `Held-out view, current fit after ${iteration} iterations: MSE ${formatNumber(novel, 3)}`,
+    );
+  }
+
+  /** Builds a trainer for a new problem: targets, initial grid, its first render. */
+  async function restart(create: () => Promise<Trainer>, key: string): Promise<void> {
+    stop('');
+    const setup = ++setupToken;
+    trainer?.destroy();
+    trainer = null;
+    trainerKey = '';
+    setStatus('Preparing the target images…');
+    const created = await create();
+    if (setup !== setupToken || context.signal.aborted) {
+      created.destroy();
+      return;
+    }
+    trainer = created;
+    const problem = created.problem;
+    targets = await created.readTargets();
+    losses = [];
+    novelErrors = new Map();
+    tenfoldAt = null;
+    iteration = 0;
+    dropped = 0;
+    timing = '';
+    spent = 0;
+    rateSamples = [];
+    novelAzimuth = problem.views[problem.views.length - 1]!.azimuth;
+    buildViewCells(problem);
+    for (const [view, canvases] of viewCanvases.entries())
+      paintView(canvases.target, targets, view, problem.size);
+    if (novelTarget) paintView(novelTarget, targets, problem.trainViews, problem.size);
+    await drawFit();
+    initialTrainMse = trainMse;
+    trainerKey = key;
+    plotLosses();
+    setStatus('Ready: press Start to fit the grid.');
+    syncButtons();
+  }
+
+  async function moveNovelView(problem: Problem): Promise<void> {
+    const current = trainer;
+    if (!current) return;
+    const view = problem.views[problem.views.length - 1]!;
+    await current.setNovelView(view);
+    novelAzimuth = view.azimuth;
+    targets = await current.readTargets();
+    if (novelTarget) paintView(novelTarget, targets, problem.trainViews, problem.size);
+    // While running, the loop's next redraw shows the fit from there.
+    if (!running) await drawFit();
+  }
+
+  /** The trainer for the current values (a new one when the problem changed), then a frame. */
+  async function sync(
+    kind: 'gpu' | 'cpu',
+    create: (problem: Problem) => Promise<Trainer>,
+  ): Promise<InverseRenderFrame | null> {
+    const problem = problemFrom(context.values, kind);
+    const key = `${kind}:${problemKey(problem)}`;
+    if (key !== trainerKey || !trainer) await restart(() => create(problem), key);
+    else if (problem.views[problem.views.length - 1]!.azimuth !== novelAzimuth)
+      await moveNovelView(problem);
+    return frame();
+  }
+
+  function toggleRun(): void {
+    if (running) {
+      stop('paused');
+      return;
+    }
+    if (!trainer) return;
+    if (iteration >= budget()) {
+      setStatus('The iteration budget is spent: Reset, or raise the budget.');
+      return;
+    }
+    running = true;
+    syncButtons();
+    void loop(token);
+  }
+
+  function report(): void {
+    const current = frame();
+    if (current) context.report(current, frameBackend);
+  }
+
+  /** The training job: one batch per animation frame until paused, done or stopped. */
+  async function loop(runToken: number): Promise<void> {
+    let count = 1;
+    let lastDraw = performance.now();
+    const live = (): boolean => runToken === token && !context.signal.aborted;
+    rateSamples = [{ at: performance.now(), iteration, spent }];
+    try {
+      while (running && live() && trainer) {
+        const current = trainer;
+        const remaining = budget() - iteration;
+        if (remaining <= 0) break;
+        const result = await current.train(Math.min(count, remaining), hyperFrom(context.values));
+        if (!live() || current !== trainer) return;
+        const done = result.losses.length;
+        losses.push(...Array.from(result.losses));
+        iteration = result.iteration;
+        dropped = result.dropped;
+        if (done > 0) {
+          const perIteration = (result.gpuMs ?? result.wallMs) / done;
+          spent += result.gpuMs ?? result.wallMs;
+          const measured =
+            frameBackend.kind === 'cpu'
+              ? 'cpu'
+              : result.gpuMs === null
+                ? 'gpu-wall'
+                : 'gpu-timestamp';
+          timing = measured === 'cpu' ? 'float64, CPU' : timingLabel(measured);
+          cost = { milliseconds: perIteration, timing: measured };
+          // Aim each batch at BATCH_TARGET_MS, by the longer of wall and GPU time.
+          const wallPerIteration = Math.max(result.wallMs / done, perIteration, 0.05);
+          count = Math.min(Math.max(Math.round(BATCH_TARGET_MS / wallPerIteration), 1), 32);
+        }
+        noteTenfold();
+        const now = performance.now();
+        rateSamples.push({ at: now, iteration, spent });
+        while (rateSamples.length > 2 && now - rateSamples[1]!.at > RATE_WINDOW_MS)
+          rateSamples.shift();
+        if (now - lastDraw > REDRAW_MS || iteration >= budget() || done === 0) {
+          await drawFit();
+          if (!live()) return;
+          lastDraw = performance.now();
+        }
+        plotLosses();
+        report();
+        setStatus(`Running: iteration ${iteration} of ${budget()}.`);
+        if (done === 0) break;
+        // One batch per animation frame: painting and input stay live.
+        await new Promise((resolve) => requestAnimationFrame(() => resolve(null)));
+      }
+    } catch (error) {
+      if (!live()) return;
+      stop('');
+      const message = error instanceof Error ? error.message : String(error);
+      setStatus(`Run failed: ${message}`);
+      // The base then stops the run (onCpuFallback) and draws again on the CPU.
+      if (frameBackend.kind === 'gpu') context.useCpu(`the GPU path failed: ${message}`);
+      return;
+    }
+    if (!live()) return;
+    const finished = iteration >= budget();
+    running = false;
+    syncButtons();
+    if (finished) setStatus(`Done: ${iteration} iterations (the budget).`);
+    report();
+  }
+
+  /** The first iteration where the mean of the last 10 losses is a tenth of the start. */
+  function noteTenfold(): void {
+    if (tenfoldAt !== null || !(initialTrainMse > 0)) return;
+    for (let k = Math.max(losses.length - 64, 10); k <= losses.length; k++) {
+      const recent = losses.slice(k - 10, k);
+      const mean = recent.reduce((a, b) => a + b, 0) / recent.length;
+      if (mean <= initialTrainMse / 10) {
+        tenfoldAt = k;
+        return;
+      }
+    }
+  }
+
+  /**
+   * Loss curve: at x = k the batch loss of iteration k + 1 (the parameters after k
+   * updates) and the held-out error last measured at or before k updates.
+   */
+  function plotLosses(): void {
+    if (!plot || !plotArea || !plotHint) return;
+    // Before the first iteration there is no curve: the hint stands in for the plot.
+    const empty = losses.length === 0;
+    plotHint.hidden = !empty;
+    plotArea.hidden = empty;
+    if (empty) return;
+    const log = (value: number): number => Math.log10(Math.max(value, 1e-30));
+    const x = losses.map((_, k) => k);
+    let last = novelErrors.get(0) ?? trainMse;
+    const novel = x.map((k) => {
+      last = novelErrors.get(k) ?? last;
+      return log(last);
+    });
+    plot.update(x, [
+      { label: 'training loss (batch)', color: '#3b7dd8', values: losses.map(log) },
+      { label: 'held-out view', color: '#d8793b', dash: [6, 4], values: novel },
+    ]);
+  }
+
+  /** The CPU notice: where the twin runs and at which size. */
+  function cpuNotice(): string {
+    const problem = problemFrom(context.values, 'cpu');
+    const requested = Number(context.values['grid']);
+    const inWorker = trainer instanceof CpuTrainer && trainer.inWorker;
+    return `Fitting with the float64 CPU twin instead${inWorker ? ', in a Web Worker' : ''}, at ${problem.resolution}³ voxels${requested > CPU_MAX_RESOLUTION ? ` (not ${requested}³)` : ''} and ${CPU_IMAGE_SIZE}×${CPU_IMAGE_SIZE} pixels per view.`;
+  }
+
+  return {
+    build(stage) {
+      const views = document.createElement('div');
+      views.className = 'sb-ir-views-block';
+      const viewsLabel = document.createElement('p');
+      viewsLabel.className = 'sb-ir-label';
+      viewsLabel.textContent = 'Training views: target (top) and current fit (bottom)';
+      viewStrip = document.createElement('div');
+      viewStrip.className = 'sb-ir-views';
+      views.append(viewsLabel, viewStrip);
+
+      novelTarget = imageCanvas('Held-out view: target', CPU_IMAGE_SIZE, CPU_IMAGE_SIZE);
+      novelFit = imageCanvas('Held-out view: current fit', CPU_IMAGE_SIZE, CPU_IMAGE_SIZE);
+      novelError = imageCanvas('Held-out view: error', CPU_IMAGE_SIZE, CPU_IMAGE_SIZE);
+      novelCaption = document.createElement('p');
+      novelCaption.className = 'sb-ir-label';
+      const novel = imageFigure(
+        imagePanel(novelTarget, 'Target').panel,
+        imagePanel(novelFit, 'Current fit').panel,
+        imagePanel(novelError, '|fit − target|', {
+          gradient: gradientCss(errorColour),
+          low: '0',
+          top: { text: String(ERROR_SCALE_TOP) },
+        }).panel,
+      );
+      novel.classList.add('sb-ir-novel');
+
+      plotHint = document.createElement('p');
+      plotHint.className = 'sb-sweep-hint';
+      plotHint.textContent =
+        'Press Start: the loss of every iteration (its batch of rays) and the held-out view’s error appear here, on a logarithmic scale.';
+      plotArea = document.createElement('div');
+      plotArea.className = 'sb-plot';
+      plotArea.hidden = true;
+      plotArea.setAttribute('role', 'img');
+      plotArea.setAttribute(
+        'aria-label',
+        'Base-10 logarithm of the loss against iteration: training loss and held-out view error',
+      );
+      // log₁₀ of the error on a linear axis: short tick labels (−1 … −8) over eight decades.
+      plot = new LinePlot(plotArea, { xLabel: 'iteration', yLabel: 'log₁₀ MSE', height: 300 });
+
+      const bar = document.createElement('div');
+      bar.className = 'sb-sweep sb-ir-run';
+      startButton = document.createElement('button');
+      startButton.type = 'button';
+      startButton.className = 'sb-button';
+      startButton.textContent = 'Start';
+      startButton.dataset['action'] = 'start';
+      startButton.addEventListener('click', toggleRun);
+      resetButton = document.createElement('button');
+      resetButton.type = 'button';
+      resetButton.className = 'sb-button';
+      resetButton.textContent = 'Reset';
+      resetButton.dataset['action'] = 'reset';
+      resetButton.addEventListener('click', reset);
+      progress = document.createElement('progress');
+      progress.setAttribute('aria-label', 'Iterations done of the budget');
+      progress.max = 1;
+      progress.value = 0;
+      status = document.createElement('span');
+      status.className = 'sb-sweep-status sb-ir-status';
+      status.setAttribute('aria-live', 'polite');
+      status.textContent = 'Preparing the target images…';
+      bar.append(startButton, resetButton, progress, status);
+
+      stage.append(views, novelCaption, novel, bar, plotHint, plotArea);
+    },
+
+    createRenderer: (gpu) => ({ gpu }),
+
+    async renderGpu(_renderer, gpu) {
+      frameBackend = { kind: 'gpu', adapterDescription: gpu.adapterDescription };
+      return sync('gpu', async (problem) => {
+        const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
+        return InverseTrainerGpu.create(gpu.device, code, problem);
+      });
+    },
+
+    async renderCpu() {
+      const backend: Backend<GpuKernel> = await context.backend();
+      const reason = backend.kind === 'cpu' ? backend.reason : 'this figure draws on the CPU';
+      frameBackend = { kind: 'cpu', reason };
+      const result = await sync('cpu', (problem) => CpuTrainer.create(problem));
+      // Only now is it known whether the twin runs in a Web Worker: say so.
+      context.cpuFallbackNotice(reason, cpuNotice());
+      return result;
+    },
+
+    get cpuNotice() {
+      return cpuNotice();
+    },
+
+    show(current) {
+      if (progress) {
+        progress.max = current.budget;
+        progress.value = Math.min(current.iteration, current.budget);
+      }
+    },
+
+    onCpuFallback() {
+      stop('stopped: the GPU was lost or failed');
+      trainerKey = '';
+    },
+
+    destroy() {
+      stop('');
+      setupToken += 1;
+      trainer?.destroy();
+      trainer = null;
+      trainerKey = '';
+    },
+  };
+}
