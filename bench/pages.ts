@@ -74,15 +74,18 @@ async function loadPage(browser: Browser, base: string, dist: string, path: stri
       .filter((name) => name.startsWith('sb-') && name !== 'sb-exercise'),
   );
   // Each widget fetches its modules, data and kernels when it first draws: scroll it into
-  // view and wait for its first frame.
+  // view and wait for its first frame (the deck shows one slide: the others are skipped).
   for (const [index] of widgets.entries()) {
     const handle = await page.evaluateHandle((i) => {
       const all = [...document.querySelectorAll('*')].filter(
         (el) => el.localName.startsWith('sb-') && el.localName !== 'sb-exercise',
       );
       all[i]?.scrollIntoView();
-      return all[i] ?? null;
+      // A widget the page does not show (the deck's other slides) never draws.
+      const shown = all[i]?.checkVisibility() ?? false;
+      return shown ? (all[i] ?? null) : null;
     }, index);
+    if ((await handle.jsonValue().catch(() => 'element')) === null) continue;
     await page
       .waitForFunction(
         (el) => el !== null && Number((el as HTMLElement).dataset['rendered'] ?? 0) > 0,
