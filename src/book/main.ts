@@ -9,10 +9,18 @@ import { setupQuizzes } from './quiz.ts';
 import { setupDeck } from './deck.ts';
 import { setupPrint } from './print.ts';
 import { setupOfflineReading } from './offline.ts';
-import { defineWidgetElement, WIDGETS } from '../widgets/registry.ts';
-import { tagName } from '../widgets/base/definition.ts';
 
 async function loadWidgets(): Promise<void> {
+  // The registry (every widget's definition, ~25 KB gzip) is loaded only by pages that
+  // embed a widget: the home page, chapter 1 and the appendix have none.
+  const hasWidget = [...document.body.querySelectorAll('*')].some((element) =>
+    element.localName.startsWith('sb-'),
+  );
+  if (!hasWidget) return;
+  const [{ defineWidgetElement, WIDGETS }, { tagName }] = await Promise.all([
+    import('../widgets/registry.ts'),
+    import('../widgets/base/definition.ts'),
+  ]);
   await Promise.all(
     WIDGETS.map(async (definition) => {
       const elements = document.querySelectorAll(tagName(definition));
