@@ -255,17 +255,30 @@ function guarded(device: GPUDevice, timeoutMs: number, what: string) {
 }
 
 /**
- * Compiles `code` through the GPU core (a module is cached by its code); compiler
- * messages become SourceDiagnostics through `map` (null: not the student's).
+ * The compiler's messages for each code a device has compiled. The GPU core caches the
+ * module, and asking a cached module, already used by pipelines and dispatches, for its
+ * compilation info again took 20 s in Chromium on SwiftShader (measured: the second
+ * check's getCompilationInfo; a false `timeout` for a correct solution). The messages
+ * of a given code never change, so they are kept with it and asked for once.
  */
-async function compile(
+const compiledNotesByDevice = new WeakMap<GPUDevice, Map<string, readonly CompilationNote[]>>();
+function compiledNotes(device: GPUDevice): Map<string, readonly CompilationNote[]> {
+  let notes = compiledNotesByDevice.get(device);
+  if (!notes) {
+    notes = new Map();
+    compiledNotesByDevice.set(device, notes);
+  }
+  // Bounded like the core's caches: a page that grades many submissions does not grow it.
+  if (notes.size > 192) notes.clear();
+  return notes;
+}
+
+async function compilerNotes(
   device: GPUDevice,
   code: string,
-  map: (line: number, column: number) => { line: number; column: number } | null,
-  timeoutMs: number,
-): Promise<{ diagnostics: SourceDiagnostic[] }> {
-  const what = 'compiling your shader';
-  const wait = guarded(device, timeoutMs, what);
+  what: string,
+  wait: <T>(promise: Promise<T>) => Promise<T>,
+): Promise<readonly CompilationNote[]> {
   let notes: readonly CompilationNote[];
   try {
     const module = await withErrorScopes(device, what, () => gpuCore(device).shaderModule(code), {
@@ -282,6 +295,26 @@ async function compile(
     notes = error.compilation.some((note) => note.type === 'error')
       ? error.compilation
       : [...error.compilation, { type: 'error', line: 0, column: 0, message: error.detail }];
+  }
+  return notes;
+}
+
+/**
+ * Compiles `code` through the GPU core (a module is cached by its code); compiler
+ * messages become SourceDiagnostics through `map` (null: not the student's).
+ */
+async function compile(
+  device: GPUDevice,
+  code: string,
+  map: (line: number, column: number) => { line: number; column: number } | null,
+  timeoutMs: number,
+): Promise<{ diagnostics: SourceDiagnostic[] }> {
+  const what = 'compiling your shader';
+  const wait = guarded(device, timeoutMs, what);
+  let notes = compiledNotes(device).get(code);
+  if (!notes) {
+    notes = await compilerNotes(device, code, what, wait);
+    compiledNotes(device).set(code, notes);
   }
   const diagnostics: SourceDiagnostic[] = [];
   for (const note of notes) {
