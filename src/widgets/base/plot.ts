@@ -15,6 +15,18 @@ export function logTickLabel(value: number): string {
   return formatNumber(10 ** exponent, 1);
 }
 
+/**
+ * The element a plot draws into: a figure for assistive technology (role img) whose
+ * label says what the plot shows, since the canvas uPlot draws says nothing itself.
+ */
+export function createPlotArea(label: string): HTMLDivElement {
+  const area = document.createElement('div');
+  area.className = 'sb-plot';
+  area.setAttribute('role', 'img');
+  area.setAttribute('aria-label', label);
+  return area;
+}
+
 export interface PlotSeries {
   label: string;
   color: string;

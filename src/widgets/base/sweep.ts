@@ -5,7 +5,7 @@
 // plot and fits the slope of log RMSE against log n. The widget supplies the
 // render and the readouts; this owns the run and Cancel buttons, the progress
 // bar, the status line, the plot and its hint.
-import { LinePlot } from './plot.ts';
+import { LinePlot, createPlotArea } from './plot.ts';
 
 /** The sweep's points: powers of two from 1 to 256. */
 export const SWEEP_POINTS = [1, 2, 4, 8, 16, 32, 64, 128, 256] as const;
@@ -120,13 +120,7 @@ export class SweepControls {
   ) {
     this.points = options.points ?? SWEEP_POINTS;
     this.errorName = options.errorName ?? 'RMSE';
-    const plotArea = document.createElement('div');
-    plotArea.className = 'sb-plot';
-    plotArea.setAttribute('role', 'img');
-    plotArea.setAttribute(
-      'aria-label',
-      `Log–log plot of ${this.errorName} against time per render`,
-    );
+    const plotArea = createPlotArea(`Log–log plot of ${this.errorName} against time per render`);
     this.plotHint = document.createElement('p');
     this.plotHint.className = 'sb-sweep-hint';
     this.plotHint.textContent = options.hint;

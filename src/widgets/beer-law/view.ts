@@ -4,7 +4,7 @@
 import type { GpuContext } from '../../gpu/device.ts';
 import type { FrameBackend } from '../base/definition.ts';
 import { formatNumber } from '../base/format.ts';
-import { LinePlot } from '../base/plot.ts';
+import { LinePlot, createPlotArea } from '../base/plot.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import { computeCurveCpu, drawBeamCpu } from './cpuBackend.ts';
 import { BeerLawGpu } from './gpuBackend.ts';
@@ -18,10 +18,7 @@ export function createView(context: ViewContext): WidgetView<BeerLawFrame, BeerL
     cpuNotice: 'Showing the float64 CPU reference, drawn at half resolution.',
     build(stage) {
       stage.appendChild(beam.element);
-      const plotArea = document.createElement('div');
-      plotArea.className = 'sb-plot';
-      plotArea.setAttribute('role', 'img');
-      plotArea.setAttribute('aria-label', 'Plot of transmittance T(s) against depth s');
+      const plotArea = createPlotArea('Plot of transmittance T(s) against depth s');
       stage.appendChild(plotArea);
       plot = new LinePlot(plotArea, {
         xLabel: 'depth s (m)',

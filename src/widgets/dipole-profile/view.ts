@@ -6,7 +6,7 @@
 import type { Backend } from '../base/backend.ts';
 import type { FrameBackend } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
-import { LinePlot } from '../base/plot.ts';
+import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import {
@@ -302,11 +302,7 @@ export function createView(
       errorHint.className = 'sb-sweep-hint';
       errorHint.textContent =
         'Relative error of the total Rd (mean of R, G, B) against the Monte Carlo’s time: the Monte Carlo’s standard error falls as t^−½, while each model’s difference from it levels off at the model’s own error.';
-      const errorPlotArea = document.createElement('div');
-      errorPlotArea.className = 'sb-plot';
-      errorPlotArea.setAttribute('role', 'img');
-      errorPlotArea.setAttribute(
-        'aria-label',
+      const errorPlotArea = createPlotArea(
         'Log plot of the Monte Carlo’s relative standard error and of the dipole models’ relative differences from the Monte Carlo against Monte Carlo time',
       );
       errorArea.append(errorHint, errorPlotArea);

@@ -6,7 +6,7 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { hgEval } from '../../reference/phase.ts';
 import { gpuFailureReason } from '../base/backend.ts';
 import { formatNumber } from '../base/format.ts';
-import { LinePlot, type PlotSeries } from '../base/plot.ts';
+import { LinePlot, type PlotSeries, createPlotArea } from '../base/plot.ts';
 import { SweepControls, logLogSlope, type SweepPoint } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import { drawLobeCpu, sampleHistogramCpu, sampleHistogramCpuInChunks } from './cpuBackend.ts';
@@ -313,11 +313,7 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
       stage.appendChild(figure);
       lobe = new LobeView((error) => context.useCpu(gpuFailureReason(error)));
       stage.appendChild(lobe.figure);
-      plotArea = document.createElement('div');
-      plotArea.className = 'sb-plot';
-      plotArea.setAttribute('role', 'img');
-      plotArea.setAttribute(
-        'aria-label',
+      plotArea = createPlotArea(
         'Histogram of the sampled scattering cosines against the analytic density 2π·p(μ)',
       );
       stage.appendChild(plotArea);

@@ -9,7 +9,7 @@ import type { FrameBackend, FrameCost } from '../base/definition.ts';
 import { formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
 import { gradientCss, imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
-import { LinePlot } from '../base/plot.ts';
+import { LinePlot, createPlotArea } from '../base/plot.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
@@ -449,14 +449,10 @@ export function createView(
       plotHint.className = 'sb-sweep-hint';
       plotHint.textContent =
         'Press Start: the loss of every iteration (its batch of rays) and the held-out view’s error appear here, on a logarithmic scale.';
-      plotArea = document.createElement('div');
-      plotArea.className = 'sb-plot';
-      plotArea.hidden = true;
-      plotArea.setAttribute('role', 'img');
-      plotArea.setAttribute(
-        'aria-label',
+      plotArea = createPlotArea(
         'Base-10 logarithm of the loss against iteration: training loss and held-out view error',
       );
+      plotArea.hidden = true;
       // log₁₀ of the error on a linear axis: short tick labels (−1 … −8) over eight decades.
       plot = new LinePlot(plotArea, { xLabel: 'iteration', yLabel: 'log₁₀ MSE', height: 300 });
 

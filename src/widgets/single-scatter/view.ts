@@ -31,7 +31,7 @@ import {
   imagePanel,
   niceScale,
 } from '../base/imagePanel.ts';
-import { LinePlot } from '../base/plot.ts';
+import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { siteUrl } from '../base/siteUrl.ts';
 import { logLogSlope } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
@@ -569,10 +569,7 @@ export function createView(
       hint.className = 'sb-sweep-hint';
       hint.textContent =
         'RMSE of the progressive image against the reference, against the accumulated time, on log–log axes; Monte Carlo error falls as time^−½ (dashed).';
-      const plotArea = document.createElement('div');
-      plotArea.className = 'sb-plot';
-      plotArea.setAttribute('role', 'img');
-      plotArea.setAttribute('aria-label', 'Log–log plot of RMSE against accumulated time');
+      const plotArea = createPlotArea('Log–log plot of RMSE against accumulated time');
       stage.append(hint, plotArea);
       plot = new LinePlot(plotArea, {
         xLabel: 'log₁₀ accumulated time (ms)',

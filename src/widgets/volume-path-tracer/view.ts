@@ -19,7 +19,7 @@ import { plan, type Plan } from '../../scene/plan.ts';
 import type { PassRenderer, PassTiming } from '../../scene/render.ts';
 import type { Backend } from '../base/backend.ts';
 import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
-import { LinePlot } from '../base/plot.ts';
+import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { logLogSlope, mergeSeries, type SweepPoint } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import {
@@ -606,11 +606,7 @@ export function createView(
       plotHint.className = 'sb-sweep-hint';
       plotHint.textContent =
         'The error plot appears when the converged reference is ready: relative RMSE of each image against its reference, against accumulated GPU time, on log–log axes.';
-      const plotArea = document.createElement('div');
-      plotArea.className = 'sb-plot';
-      plotArea.setAttribute('role', 'img');
-      plotArea.setAttribute(
-        'aria-label',
+      const plotArea = createPlotArea(
         'Log–log plot of the relative error of both images against accumulated GPU time',
       );
       stage.append(plotHint, plotArea);

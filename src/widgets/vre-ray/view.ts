@@ -3,7 +3,7 @@
 // reaches the eye from [0, s] term by term. Readouts and backends: widget.ts and the base.
 import type { GpuContext } from '../../gpu/device.ts';
 import { formatNumber } from '../base/format.ts';
-import { LinePlot } from '../base/plot.ts';
+import { LinePlot, createPlotArea } from '../base/plot.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import { drawRayCpu, marchRayCpu } from './cpuBackend.ts';
 import { VreRayGpu } from './gpuBackend.ts';
@@ -28,11 +28,7 @@ export function createView(context: ViewContext): WidgetView<VreRayFrame, VreRay
         legend.appendChild(span);
       }
       stage.append(ray.element, legend);
-      const plotArea = document.createElement('div');
-      plotArea.className = 'sb-plot';
-      plotArea.setAttribute('role', 'img');
-      plotArea.setAttribute(
-        'aria-label',
+      const plotArea = createPlotArea(
         'Plot of the radiance reaching the eye from the segment [0, s], term by term, and T(0→s), against s',
       );
       stage.appendChild(plotArea);
