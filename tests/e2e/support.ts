@@ -72,7 +72,11 @@ export async function readout(widget: Locator, key: string): Promise<string> {
   return (await widget.locator(`[data-readout="${key}"]`).textContent()) ?? '';
 }
 
-/** Scrolls a widget into view and waits until it has drawn at least `count` times. */
+/**
+ * Scrolls a widget into view and waits until it has drawn at least `count` times and
+ * its progressive refinement has settled at full quality (data-settled, set by the base
+ * element: src/widgets/base/definedElement.ts), so readouts are the final numbers.
+ */
 export async function waitForRender(widget: Locator, count = 1): Promise<void> {
   await widget.scrollIntoViewIfNeeded();
   await expect
@@ -80,6 +84,19 @@ export async function waitForRender(widget: Locator, count = 1): Promise<void> {
       timeout: 30_000,
     })
     .toBeGreaterThanOrEqual(count);
+  await waitForSettled(widget);
+}
+
+/** Waits until the widget shows full quality for its current inputs (no preview, no job pending). */
+export async function waitForSettled(widget: Locator, timeout = 45_000): Promise<void> {
+  await expect
+    .poll(async () => await widget.getAttribute('data-settled'), { timeout })
+    .not.toBe('false');
+}
+
+/** The number of frames the widget has shown (each refinement stage and job step counts). */
+export async function framesShown(widget: Locator): Promise<number> {
+  return Number((await widget.getAttribute('data-frames')) ?? '0');
 }
 
 export interface CanvasStats {

@@ -10,6 +10,7 @@ import { BackendChooser, gpuFailureReason, type Backend } from './backend.ts';
 import { tagName, type FrameBackend, type Readouts, type WidgetDefinition } from './definition.ts';
 import { timingLabel } from './timing.ts';
 import { ReadoutList } from './readoutList.ts';
+import type { FrameRequest } from './refinement.ts';
 import type {
   CanvasOptions,
   ManagedCanvas,
@@ -97,6 +98,16 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   );
   private renderer: unknown = null;
 
+  /** Bumped by every input; a render of an older version is stale. */
+  private inputVersion = 0;
+  /** The input version the last render drew, and its stage of refinement. */
+  private renderedVersion = -1;
+  private stage = 0;
+  /** The last frame asked for the next stage (Refinement.pending === 'frame'). */
+  private refineNext = false;
+  /** Aborted on the next input (ViewContext.inputSignal, FrameRequest.signal). */
+  private inputAborter = new AbortController();
+
   /** The children the element had before its first shell (see ViewContext.content). */
   private content: readonly Element[] | null = null;
 
@@ -159,6 +170,15 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       if (value !== undefined && this.values[name] !== value) super.setValue(name, String(value));
   }
 
+  /** New parameters: the stale stage's signal aborts, and the next frame is stage 0. */
+  protected override onInput(): void {
+    this.inputVersion += 1;
+    this.refineNext = false;
+    this.inputAborter.abort();
+    this.inputAborter = new AbortController();
+    this.dataset['settled'] = 'false';
+  }
+
   /** A reader's input through a control, then the view's linked parameters (valueChanged). */
   protected override setValue(name: string, raw: string): void {
     super.setValue(name, raw);
@@ -181,6 +201,9 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       },
       get signal() {
         return element.aborter.signal;
+      },
+      get inputSignal() {
+        return element.inputAborter.signal;
       },
       host: this,
       backend: () => this.backends.choose(),
@@ -226,7 +249,21 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     this.releaseRenderer();
     for (const canvas of this.canvases) canvas.replaceIfWebGpu();
     this.backends.useCpu(reason);
+    this.refineNext = false;
     this.scheduleRender();
+  }
+
+  /**
+   * The request of this render: the next stage if the last frame asked for one and the
+   * inputs are the same; otherwise (an input, a move, a redraw) stage 0 of a new picture.
+   */
+  private nextRequest(): FrameRequest {
+    const refine = this.refineNext && this.renderedVersion === this.inputVersion;
+    this.stage = refine ? this.stage + 1 : 0;
+    this.renderedVersion = this.inputVersion;
+    this.refineNext = false;
+    if (!refine) this.dataset['settled'] = 'false';
+    return { stage: this.stage, signal: this.inputAborter.signal };
   }
 
   protected async render(): Promise<void> {
@@ -237,32 +274,58 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       if (frame !== null) this.report(frame, { kind: 'cpu', reason: 'no backend' });
       return;
     }
+    const request = this.nextRequest();
+    const version = this.inputVersion;
     const backend: Backend<unknown> = await this.backends.choose();
     if (backend.kind === 'gpu' && view.renderGpu) {
       let frame: Frame | null;
       try {
-        frame = await view.renderGpu(backend.renderer, backend.gpu);
+        frame = await view.renderGpu(backend.renderer, backend.gpu, request);
       } catch (error) {
+        if (request.signal.aborted) return; // a stale stage gave up: the next input draws
         this.fallBackToCpu(gpuFailureReason(error));
         return;
       }
       this.clearNotice('backend');
       if (frame !== null)
-        this.report(frame, {
-          kind: 'gpu',
-          adapterDescription: backend.gpu.adapterDescription,
-        });
+        this.report(
+          frame,
+          { kind: 'gpu', adapterDescription: backend.gpu.adapterDescription },
+          version,
+        );
       return;
     }
     const reason = backend.kind === 'cpu' ? backend.reason : 'this figure draws on the CPU';
     // Said before drawing: a CPU frame can be a long job (the comparison of estimators).
     this.showCpuFallbackNotice(reason, view.cpuNotice ?? '');
-    const frame = (await view.renderCpu?.()) ?? null;
-    if (frame !== null) this.report(frame, { kind: 'cpu', reason });
+    let frame: Frame | null;
+    try {
+      frame = (await view.renderCpu?.(request)) ?? null;
+    } catch (error) {
+      if (request.signal.aborted) return; // a stale stage gave up: the next input draws
+      throw error;
+    }
+    if (frame !== null) this.report(frame, { kind: 'cpu', reason }, version);
   }
 
-  /** Fills the readouts and the cost line, records the cost, and lets the view draw the rest. */
-  private report(frame: Frame, backend: FrameBackend): void {
+  /**
+   * Fills the readouts and the cost line, records the cost, lets the view draw the rest,
+   * and follows the frame's refinement: data-frames counts every frame shown,
+   * data-stage and the stage line say what it is, data-settled whether it is full
+   * quality. A frame rendered for the current inputs (`version`) that asks for more
+   * schedules the next stage; a job's report (no version) is the job's own business.
+   */
+  private report(frame: Frame, backend: FrameBackend, version?: number): void {
+    this.dataset['frames'] = String(Number(this.dataset['frames'] ?? '0') + 1);
+    const refinement = this.view?.refinement?.(frame);
+    const pending = refinement?.pending ?? null;
+    this.dataset['stage'] = refinement?.label ?? 'full';
+    this.dataset['settled'] = pending === null ? 'true' : 'false';
+    this.readouts?.setStage(refinement?.label ?? '', pending !== null);
+    if (pending === 'frame' && (version === undefined || version === this.inputVersion)) {
+      this.refineNext = true;
+      this.scheduleRender();
+    }
     const readouts: Readouts<Frame> | undefined = this.definition.readouts;
     if (readouts) {
       for (const row of readouts.rows) {

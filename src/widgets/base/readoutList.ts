@@ -1,9 +1,12 @@
 // A widget's readout list: labelled values (`data-readout` keys, marked ok or
-// bad) and a live cost line under them.
+// bad), the stage of refinement shown (preview or full quality) and a live cost line
+// under them.
 
 export class ReadoutList {
   /** The cost line (what ran where, and how long it took). */
   readonly cost: HTMLElement;
+  /** Which stage of the refinement the picture is (empty for a widget drawn in one go). */
+  readonly stage: HTMLElement;
   private readonly values = new Map<string, HTMLElement>();
 
   /** Appends a `<dl>` with one row per [key, label] and the cost line to container. */
@@ -20,10 +23,26 @@ export class ReadoutList {
       list.appendChild(row);
       this.values.set(key, value);
     }
+    this.stage = document.createElement('p');
+    this.stage.className = 'sb-stage';
+    this.stage.dataset['readout'] = 'stage';
+    this.stage.hidden = true;
     this.cost = document.createElement('p');
     this.cost.className = 'sb-cost';
     this.cost.setAttribute('aria-live', 'polite');
-    container.append(list, this.cost);
+    container.append(list, this.stage, this.cost);
+  }
+
+  /**
+   * Shows the stage; while more stages follow, the live cost line is marked busy so a
+   * screen reader announces the finished picture's cost, not every preview's.
+   */
+  setStage(label: string, refining: boolean): void {
+    this.stage.hidden = label === '';
+    this.stage.textContent = refining ? `${label} · refining…` : label;
+    this.stage.classList.toggle('sb-refining', refining);
+    if (refining) this.cost.setAttribute('aria-busy', 'true');
+    else this.cost.removeAttribute('aria-busy');
   }
 
   set(key: string, text: string, state?: 'ok' | 'bad'): void {

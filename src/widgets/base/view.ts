@@ -9,6 +9,7 @@ import type { Backend } from './backend.ts';
 import type { ParameterValues } from '../parameters.ts';
 import type { FrameBackend } from './definition.ts';
 import type { NoticeKind } from './widgetElement.ts';
+import type { FrameRequest, Refinement } from './refinement.ts';
 
 /**
  * A canvas owned by the base element. After a device loss or a failed GPU frame the
@@ -72,6 +73,8 @@ export interface ViewContext<Renderer = unknown> {
   readonly widgetId: string;
   /** Aborted when the widget is destroyed: long jobs stop on it. */
   readonly signal: AbortSignal;
+  /** Aborted when the parameters change again (a stale stage or job step may stop early). */
+  readonly inputSignal: AbortSignal;
 }
 
 export interface WidgetView<Frame, Renderer = unknown> {
@@ -85,9 +88,14 @@ export interface WidgetView<Frame, Renderer = unknown> {
    * One frame on the GPU. Throwing switches the widget to the CPU for good (with the
    * reason in its notice); null means the frame reports itself later (context.report).
    */
-  renderGpu?(renderer: Renderer, gpu: GpuContext): Promise<Frame | null>;
+  renderGpu?(renderer: Renderer, gpu: GpuContext, request: FrameRequest): Promise<Frame | null>;
   /** One frame with the float64 CPU twin (no WebGPU, ?backend=cpu, or after a loss). */
-  renderCpu?(): Promise<Frame | null> | Frame | null;
+  renderCpu?(request: FrameRequest): Promise<Frame | null> | Frame | null;
+  /**
+   * Which stage of the progressive refinement a frame is (refinement.ts). Absent, or
+   * undefined for a frame: the frame is full quality and nothing more follows.
+   */
+  refinement?(frame: Frame): Refinement | undefined;
   /**
    * For a widget that does not draw with the page's shared device (the exercise grades
    * on a device of its own and checks WebGPU itself): the base calls this instead of

@@ -317,8 +317,15 @@ export abstract class WidgetElement extends HTMLElement {
     else this.clearNotice(noticeKey);
     this.syncControls();
     this.saveState();
+    this.onInput();
     this.scheduleRender();
   }
+
+  /**
+   * The parameters changed (a control, a preset, the view's own input): the next frame
+   * is the first of a new picture (definedElement.ts restarts its refinement here).
+   */
+  protected onInput(): void {}
 
   protected applyPreset(index: number): void {
     const preset = this.presets[index];
@@ -327,6 +334,7 @@ export abstract class WidgetElement extends HTMLElement {
     this.values = { ...this.initialValues, ...Object.fromEntries(values) };
     this.syncControls();
     this.saveState();
+    this.onInput();
     this.scheduleRender();
     this.showPresetName(`${index + 1} · ${preset.label}`);
   }

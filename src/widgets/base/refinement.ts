@@ -1,0 +1,162 @@
+// Progressive refinement: after any input a widget shows a first picture within a
+// frame budget (a coarse rung: fewer pixels, samples or steps), then refines it in
+// later frames up to full quality, each stage one frame of its own so that the page
+// paints and takes input in between. The base element (definedElement.ts) counts the
+// stages, restarts at stage 0 on every input and aborts a stale stage's signal; a view
+// chooses what each stage draws, usually with a Ladder, and says through
+// WidgetView.refinement which stage a frame is and whether more will come.
+
+/** After an input, the first picture should be on screen within this on WebGPU… */
+export const GPU_FIRST_PICTURE_MS = 100;
+/** …and within this with the CPU twin (issue 23: 100 ms and 200 ms on a CPU WebGPU). */
+export const CPU_FIRST_PICTURE_MS = 200;
+/** Work on the main thread runs in slices of at most this (the long-task threshold). */
+export const SLICE_MS = 50;
+/** What a refinement stage after the first may cost (per frame): the page stays responsive. */
+export const REFINE_STAGE_MS = 250;
+
+/** What the base element asks of one frame. */
+export interface FrameRequest {
+  /** 0: the first frame after an input (within the first-picture budget); then 1, 2, …. */
+  readonly stage: number;
+  /** Aborted when the inputs change again: a stale stage may stop early. */
+  readonly signal: AbortSignal;
+}
+
+/**
+ * What a reported frame is. `pending` says what comes next: 'frame', the base asks for
+ * the next stage on the next animation frame; 'job', the view's own job (a reference, a
+ * training run) reports again by itself; null, this is full quality for these inputs.
+ */
+export interface Refinement {
+  /** Shown to the reader: e.g. "Preview: 64×64 pixels, 1 sample per pixel". */
+  label: string;
+  pending: 'frame' | 'job' | null;
+}
+
+/** The first-picture budget of a backend. */
+export function firstPictureBudget(backend: 'gpu' | 'cpu'): number {
+  return backend === 'gpu' ? GPU_FIRST_PICTURE_MS : CPU_FIRST_PICTURE_MS;
+}
+
+/** One rung of a ladder: a setting (a resolution, a sample count), its relative work and a label. */
+export interface Rung<T> {
+  value: T;
+  /** Work relative to the other rungs (pixels × samples, steps…): cost is taken as proportional. */
+  work: number;
+  label: string;
+}
+
+/** The rung a frame draws, and whether it is the last (full quality). */
+export interface RungChoice<T> {
+  rung: Rung<T>;
+  index: number;
+  final: boolean;
+}
+
+/**
+ * A ladder of settings from coarse to full, climbed one rung per stage. Stage 0 starts on
+ * the finest rung whose predicted cost fits the first-picture budget: the cost per unit
+ * of work is learnt from the frames drawn (record), so a fast GPU starts high and a CPU
+ * WebGPU starts low. Before any measurement it starts on the lowest rung.
+ */
+export class Ladder<T> {
+  private current = 0;
+  /** Milliseconds per unit of work, smoothed over recent frames (null: nothing measured yet). */
+  private msPerWork: number | null = null;
+
+  constructor(
+    readonly rungs: readonly Rung<T>[],
+    private readonly firstBudgetMs: number,
+    private readonly stageBudgetMs = REFINE_STAGE_MS,
+  ) {
+    if (rungs.length === 0) throw new Error('a ladder needs at least one rung');
+  }
+
+  /**
+   * The rung of this stage: at stage 0 the finest rung predicted to fit the first-picture
+   * budget; after that at least one rung up, or straight to the finest rung predicted to
+   * fit a refinement stage's budget (a fast GPU skips the rungs it does not need).
+   */
+  pick(request: Pick<FrameRequest, 'stage'>): RungChoice<T> {
+    const last = this.rungs.length - 1;
+    this.current =
+      request.stage === 0
+        ? this.fitting(this.firstBudgetMs)
+        : Math.min(Math.max(this.current + 1, this.fitting(this.stageBudgetMs)), last);
+    return { rung: this.rungs[this.current]!, index: this.current, final: this.current === last };
+  }
+
+  /** The index of the finest rung predicted to cost at most `budgetMs` (0 before any measurement). */
+  fitting(budgetMs: number): number {
+    if (this.msPerWork === null) return 0;
+    let best = 0;
+    this.rungs.forEach((rung, index) => {
+      if (this.msPerWork! * rung.work <= budgetMs) best = index;
+    });
+    return best;
+  }
+
+  /** Learns the cost of a frame drawn on rung `index` (exponentially smoothed, α = ½). */
+  record(index: number, milliseconds: number): void {
+    const rung = this.rungs[index];
+    if (!rung || !(milliseconds >= 0) || !(rung.work > 0)) return;
+    const perWork = milliseconds / rung.work;
+    this.msPerWork = this.msPerWork === null ? perWork : 0.5 * (this.msPerWork + perWork);
+  }
+
+  /** The refinement of a frame drawn on `choice`. */
+  refinement(choice: RungChoice<T>): Refinement {
+    return {
+      label: choice.final ? choice.rung.label : `Preview: ${choice.rung.label}`,
+      pending: choice.final ? null : 'frame',
+    };
+  }
+}
+
+/**
+ * Gives the page a turn: the browser paints and handles input before the work goes on.
+ * scheduler.yield where there is one (it keeps the task's priority), else a message
+ * (a macrotask without setTimeout's 4 ms clamp).
+ */
+export function yieldToPage(): Promise<void> {
+  const scheduler = (globalThis as { scheduler?: { yield?: () => Promise<void> } }).scheduler;
+  if (scheduler?.yield) return scheduler.yield();
+  if (typeof MessageChannel === 'undefined')
+    return new Promise((resolve) => setTimeout(resolve, 0));
+  return new Promise((resolve) => {
+    const channel = new MessageChannel();
+    channel.port1.onmessage = () => {
+      channel.port1.close();
+      resolve();
+    };
+    channel.port2.postMessage(null);
+  });
+}
+
+/**
+ * A loop's time slicer: `await slicer.pause()` inside long CPU work yields to the page
+ * once the current slice has run for `sliceMs`, so no task is longer than about that.
+ * It throws the signal's reason when the work went stale while it waited.
+ */
+export class TimeSlicer {
+  private sliceStart = performance.now();
+
+  constructor(
+    private readonly signal?: AbortSignal,
+    private readonly sliceMs = SLICE_MS * 0.6,
+  ) {}
+
+  /** True when the slice is used up (check it every few iterations: performance.now is cheap). */
+  due(): boolean {
+    return performance.now() - this.sliceStart >= this.sliceMs;
+  }
+
+  /** Yields if the slice is used up; throws if aborted. */
+  async pause(): Promise<void> {
+    if (!this.due()) return;
+    await yieldToPage();
+    this.signal?.throwIfAborted();
+    this.sliceStart = performance.now();
+  }
+}
