@@ -150,6 +150,12 @@ export class LinePlot {
           })),
         ],
         cursor: { drag: { x: false, y: false } },
+        hooks: {
+          // The legend's values are those under the cursor: shown only while there is one.
+          setCursor: [
+            (u: uPlot) => this.container.classList.toggle('sb-plot-hover', u.cursor.idx != null),
+          ],
+        },
       },
       data,
       this.container,
