@@ -59,7 +59,7 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     name: 'No scattering',
     points: 1,
     message:
-      "With σs' = 0 (α' = 0) nothing scatters back: R_d must be exactly 0 (§9 row 20); a weakly " +
+      "With σs' = 0 (α' = 0) nothing scatters back: R_d must be exactly 0; a weakly " +
       'scattering material still reflects.',
     ...HIDDEN_TOLERANCE,
     generate: (seed) => {
@@ -82,7 +82,7 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     name: 'No absorption',
     points: 1,
     message:
-      "With σa = 0 (α' = 1, σtr = 0) the profile is a finite power law; yours is wrong there (§9 row 21).",
+      "With σa = 0 (α' = 1, σtr = 0) the profile is a finite power law; yours is wrong there.",
     ...HIDDEN_TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'dipole no absorption');

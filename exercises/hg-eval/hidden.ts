@@ -72,12 +72,12 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     points: 1,
     message:
       'At the forward peak of a strong lobe your value is off: 1 + g² − 2gμ cancels in f32 when ' +
-      'g and μ are near 1; compute it as (1 − g)² + 2g(1 − μ) (chapter 3, §2.5).',
+      'g and μ are near 1; compute it as (1 − g)² + 2g(1 − μ) (chapter 3, “In 32-bit floating point”).',
     ...TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'hg-eval peak');
       return [
-        { label: 'g = 0.999, μ = 1 (§9 row 1)', args: [0.999, 1] },
+        { label: 'g = 0.999, μ = 1 (the sharp forward peak)', args: [0.999, 1] },
         ...Array.from({ length: 3 }, () => ({
           label: 'near the peak',
           args: [r.uniform(0.99, 0.999), r.uniform(0.9999, 1)],

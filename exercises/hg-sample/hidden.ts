@@ -106,7 +106,7 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     points: 1,
     message:
       'For |g| ≤ 1e-6 the inverse CDF divides two tiny numbers and leaves [−1, 1] in f32: use ' +
-      'μ = 2ξ − 1 for very small |g| (physics.md §9 row 6), and the formula elsewhere.',
+      'μ = 2ξ − 1 for very small |g| (where the formula loses every digit in f32), and the formula elsewhere.',
     ...POINT_TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'hg-sample nearly isotropic');

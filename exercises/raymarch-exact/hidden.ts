@@ -53,7 +53,7 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     points: 1,
     message:
       'For σ0 ≥ 1e5 the ray is opaque and T must be exactly 0 (the linearised update gives huge ' +
-      'values or NaN here, §9 row 10); thick but not opaque rays keep their small T.',
+      'values or NaN here); thick but not opaque rays keep their small T.',
     ...TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'raymarch opaque');

@@ -60,7 +60,7 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
     points: 1,
     message:
       'For an opaque medium (σt ≥ 1e5) or a light behind more than 100 optical depths of it your ' +
-      'result is wrong: the transmittances underflow to 0, never NaN (§9 row 10).',
+      'result is wrong: the transmittances underflow to 0, never NaN.',
     ...TOLERANCE,
     generate: (seed) => {
       const r = caseSampler(seed, 'single-scatter opaque');

@@ -643,6 +643,20 @@ function formatArgs(exercise: ExerciseDefinition, args: readonly number[]): stri
   return names.map((name, i) => `${name} = ${formatNumber(args[i] ?? 0)}`).join(', ');
 }
 
+/**
+ * A sample's "Arguments" cell: the case's label, then the arguments unless the label
+ * already states every one of them ("g = 0.7, μ = -1" for (0.7, −1) would otherwise
+ * read "g = 0.7, μ = -1: g = 0.7, mu = -1").
+ */
+export function caseArguments(label: string, formatted: string, args: readonly number[]): string {
+  const assignments = label.split('=').length - 1;
+  const numbers = (label.match(/-?\d+(?:\.\d+)?(?:e-?\d+)?/gi) ?? []).map(Number);
+  const statesAll =
+    assignments === args.length &&
+    args.every((arg) => numbers.some((n) => n === Number(arg.toPrecision(7))));
+  return statesAll ? label : `${label}: ${formatted}`;
+}
+
 function withinTolerance(student: number, reference: number, rtol: number, atol: number): boolean {
   if (Number.isNaN(student)) return false;
   if (Number.isNaN(reference)) return false;
@@ -724,7 +738,7 @@ async function runCasesCheck(
     (_, i) => !withinTolerance(got[i] ?? NaN, expected[i] ?? NaN, check.rtol, check.atol),
   );
   const samples = check.cases.map((c, i) => ({
-    args: `${c.label}: ${formatArgs(ctx.exercise, c.args)}`,
+    args: caseArguments(c.label, formatArgs(ctx.exercise, c.args), c.args),
     student: formatNumber(got[i] ?? NaN),
     reference: formatNumber(expected[i] ?? NaN),
   }));

@@ -171,7 +171,7 @@ export class ResultView {
     }
     const diffBox = element('div', 'sb-plot sb-exercise-plot');
     box.appendChild(diffBox);
-    const diff = new LinePlot(diffBox, { xLabel, yLabel: 'yours − ref.', height: 120 });
+    const diff = new LinePlot(diffBox, { xLabel, yLabel: 'yours − ref.', height: 180 });
     diff.update(x, [
       {
         label: 'difference',
