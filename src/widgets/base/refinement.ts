@@ -152,8 +152,9 @@ export class TimeSlicer {
     return performance.now() - this.sliceStart >= this.sliceMs;
   }
 
-  /** Yields if the slice is used up; throws if aborted. */
+  /** Yields if the slice is used up; throws if aborted (before or after yielding). */
   async pause(): Promise<void> {
+    this.signal?.throwIfAborted();
     if (!this.due()) return;
     await yieldToPage();
     this.signal?.throwIfAborted();

@@ -29,13 +29,16 @@ export function computeCurveCpu(inputs: BeerLawInputs): BeerLawResult {
   return { ...result, milliseconds: performance.now() - start, timing: 'cpu' };
 }
 
-/** Draws the same picture as the WGSL fragment shader, in float64, at 1/scale resolution. */
-export function drawBeamCpu(canvas: HTMLCanvasElement, inputs: BeerLawInputs, scale = 2): void {
-  const context = canvas.getContext('2d');
-  if (!context) throw new Error('this browser cannot draw on a 2D canvas');
-  const width = Math.max(1, Math.floor(canvas.width / scale));
-  const height = Math.max(1, Math.floor(canvas.height / scale));
-  const image = context.createImageData(width, height);
+/**
+ * The same picture as the WGSL fragment shader, in float64, as RGBA pixels of a
+ * width × height image (no DOM: the compute worker runs it, jobs.ts).
+ */
+export function paintBeam(
+  inputs: BeerLawInputs,
+  width: number,
+  height: number,
+): Uint8ClampedArray<ArrayBuffer> {
+  const image = { data: new Uint8ClampedArray(width * height * 4) };
   const [viewMin, viewMax] = viewRange(inputs.thickness);
   const d = inputs.thickness;
   const albedo = inputs.sigmaT > 0 ? inputs.sigmaS / inputs.sigmaT : 0;
@@ -89,9 +92,5 @@ export function drawBeamCpu(canvas: HTMLCanvasElement, inputs: BeerLawInputs, sc
       image.data[offset + 3] = 255;
     }
   }
-  // Draw small, then scale up to the canvas with smoothing.
-  const small = new OffscreenCanvas(width, height);
-  small.getContext('2d')?.putImageData(image, 0, 0);
-  context.imageSmoothingEnabled = true;
-  context.drawImage(small, 0, 0, canvas.width, canvas.height);
+  return image.data;
 }

@@ -6,7 +6,10 @@ import type { FrameBackend } from '../base/definition.ts';
 import { formatNumber } from '../base/format.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
-import { computeCurveCpu, drawBeamCpu } from './cpuBackend.ts';
+import { CpuPicture } from '../base/cpuPicture.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import { computeCurveCpu } from './cpuBackend.ts';
+import type { jobs } from './jobs.ts';
 import { BeerLawGpu } from './gpuBackend.ts';
 import { inputsFrom } from './model.ts';
 import type { BeerLawFrame } from './widget.ts';
@@ -14,8 +17,16 @@ import type { BeerLawFrame } from './widget.ts';
 export function createView(context: ViewContext): WidgetView<BeerLawFrame, BeerLawGpu> {
   const beam = context.canvas({ width: 960, height: 360 });
   let plot: LinePlot | null = null;
+  // Without WebGPU the beam is painted in the compute worker: 1/8, 1/4, then 1/2 of
+  // the canvas's resolution, the first within the CPU's first-picture budget.
+  const cpuBeam = new CpuPicture(
+    workerJobs<typeof jobs>('beer-law'),
+    'paintBeam',
+    beam.element,
+    [8, 4, 2],
+  );
   return {
-    cpuNotice: 'Showing the float64 CPU reference, drawn at half resolution.',
+    cpuNotice: 'Showing the float64 CPU reference; the beam is drawn at up to half resolution.',
     build(stage) {
       stage.appendChild(beam.element);
       const plotArea = createPlotArea('Plot of transmittance T(s) against depth s');
@@ -35,12 +46,13 @@ export function createView(context: ViewContext): WidgetView<BeerLawFrame, BeerL
       await renderer.draw(inputs);
       return { inputs, result, reference };
     },
-    renderCpu() {
+    async renderCpu(request) {
       const inputs = inputsFrom(context.values);
       const reference = computeCurveCpu(inputs);
-      drawBeamCpu(beam.element, inputs);
-      return { inputs, result: reference, reference };
+      const picture = await cpuBeam.draw(beam.element, inputs, request);
+      return { inputs, result: reference, reference, picture };
     },
+    refinement: (frame) => frame.picture?.refinement,
     destroyRenderer: (renderer) => renderer.destroy(),
     show({ inputs, result }: BeerLawFrame, _backend: FrameBackend) {
       beam.element.setAttribute(

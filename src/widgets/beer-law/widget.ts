@@ -2,6 +2,7 @@
 // the attenuated beam on the GPU, reports T at the exit next to its float64
 // reference and the cost of computing it, and checks the multiplicative property
 // T(0→d) = T(0→s₀)·T(s₀→d) at the split point.
+import type { CpuPictureStage } from '../base/cpuPicture.ts';
 import { defineWidget, type FrameBackend } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { BEER_LAW } from './schema.ts';
@@ -12,6 +13,8 @@ export interface BeerLawFrame {
   inputs: BeerLawInputs;
   result: BeerLawResult;
   reference: BeerLawResult;
+  /** The CPU fallback's picture (painted in the compute worker): its size, cost and stage. */
+  picture?: CpuPictureStage;
 }
 
 /**
@@ -20,6 +23,14 @@ export interface BeerLawFrame {
  */
 function splitBudget(backend: FrameBackend): number {
   return backend.kind === 'gpu' ? 5e-4 : 1e-12;
+}
+
+/** The CPU picture's part of the cost line. */
+export function pictureCost(picture: CpuPictureStage): string {
+  const size = `${picture.width}×${picture.height}`;
+  return picture.milliseconds > 0
+    ? `beam ${size} painted in a worker in ${formatMilliseconds(picture.milliseconds)}`
+    : `beam ${size} from the cache`;
 }
 
 export const widget = defineWidget<BeerLawFrame>({
@@ -107,10 +118,14 @@ export const widget = defineWidget<BeerLawFrame>({
           inputs.sigmaT > 0 ? `${formatNumber(1 / inputs.sigmaT, 4)} m` : '∞ (no medium)',
       },
     ],
-    cost: ({ result }) => ({ milliseconds: result.milliseconds, timing: result.timing }),
-    costLine: ({ result, reference }, how) =>
+    cost: ({ result, picture }) => ({
+      milliseconds: result.milliseconds + (picture?.milliseconds ?? 0),
+      timing: result.timing,
+    }),
+    costLine: ({ result, reference, picture }, how) =>
       `${result.transmittance.length} samples of T(s) in ${formatMilliseconds(result.milliseconds)} (${how}); ` +
-      `float64 reference on the CPU in ${formatMilliseconds(reference.milliseconds)}.`,
+      `float64 reference on the CPU in ${formatMilliseconds(reference.milliseconds)}` +
+      (picture ? `; ${pictureCost(picture)}.` : '.'),
   },
   slides: [
     {

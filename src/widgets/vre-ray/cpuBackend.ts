@@ -55,13 +55,16 @@ export function marchRayCpu(inputs: VreRayInputs, steps = MARCH_STEPS): VreRayRe
 /** Exposure of the picture's lower half, as SOURCE_GAIN in the kernel; display only. */
 const SOURCE_GAIN = 2.5;
 
-/** Draws the same picture as the WGSL fragment shader, in float64, at 1/scale resolution. */
-export function drawRayCpu(canvas: HTMLCanvasElement, inputs: VreRayInputs, scale = 2): void {
-  const context = canvas.getContext('2d');
-  if (!context) throw new Error('this browser cannot draw on a 2D canvas');
-  const width = Math.max(1, Math.floor(canvas.width / scale));
-  const height = Math.max(1, Math.floor(canvas.height / scale));
-  const image = context.createImageData(width, height);
+/**
+ * The same picture as the WGSL fragment shader, in float64, as RGBA pixels of a
+ * width × height image (no DOM: the compute worker runs it, jobs.ts).
+ */
+export function paintRay(
+  inputs: VreRayInputs,
+  width: number,
+  height: number,
+): Uint8ClampedArray<ArrayBuffer> {
+  const image = { data: new Uint8ClampedArray(width * height * 4) };
   const [viewMin, viewMax] = viewRange(inputs.length);
   const d = inputs.length;
   const medium = mediumFor(inputs);
@@ -110,9 +113,5 @@ export function drawRayCpu(canvas: HTMLCanvasElement, inputs: VreRayInputs, scal
       image.data[offset + 3] = 255;
     }
   }
-  // Draw small, then scale up to the canvas with smoothing.
-  const small = new OffscreenCanvas(width, height);
-  small.getContext('2d')?.putImageData(image, 0, 0);
-  context.imageSmoothingEnabled = true;
-  context.drawImage(small, 0, 0, canvas.width, canvas.height);
+  return image.data;
 }

@@ -5,7 +5,10 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { formatNumber } from '../base/format.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
-import { drawRayCpu, marchRayCpu } from './cpuBackend.ts';
+import { CpuPicture } from '../base/cpuPicture.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import { marchRayCpu } from './cpuBackend.ts';
+import type { jobs } from './jobs.ts';
 import { VreRayGpu } from './gpuBackend.ts';
 import { exactRadiance, inputsFrom } from './model.ts';
 import { marchedTransmittance, type VreRayFrame } from './widget.ts';
@@ -13,8 +16,16 @@ import { marchedTransmittance, type VreRayFrame } from './widget.ts';
 export function createView(context: ViewContext): WidgetView<VreRayFrame, VreRayGpu> {
   const ray = context.canvas({ width: 960, height: 360 });
   let plot: LinePlot | null = null;
+  // Without WebGPU the ray is painted in the compute worker: 1/8, 1/4, then 1/2 of
+  // the canvas's resolution, the first within the CPU's first-picture budget.
+  const cpuRay = new CpuPicture(
+    workerJobs<typeof jobs>('vre-ray'),
+    'paintRay',
+    ray.element,
+    [8, 4, 2],
+  );
   return {
-    cpuNotice: 'Showing the float64 CPU march, drawn at half resolution.',
+    cpuNotice: 'Showing the float64 CPU march; the ray is drawn at up to half resolution.',
     build(stage) {
       const legend = document.createElement('p');
       legend.className = 'sb-vre-legend';
@@ -46,12 +57,13 @@ export function createView(context: ViewContext): WidgetView<VreRayFrame, VreRay
       await renderer.draw(inputs);
       return { inputs, result, twin, exact: exactRadiance(inputs) };
     },
-    renderCpu() {
+    async renderCpu(request) {
       const inputs = inputsFrom(context.values);
       const twin = marchRayCpu(inputs);
-      drawRayCpu(ray.element, inputs);
-      return { inputs, result: twin, twin, exact: exactRadiance(inputs) };
+      const picture = await cpuRay.draw(ray.element, inputs, request);
+      return { inputs, result: twin, twin, exact: exactRadiance(inputs), picture };
     },
+    refinement: (frame) => frame.picture?.refinement,
     destroyRenderer: (renderer) => renderer.destroy(),
     show({ inputs, result }) {
       const T = marchedTransmittance(result);

@@ -3,6 +3,7 @@
 // draws the medium and the weighted source T(0,s)·(σa Le + σs L_in) on the GPU,
 // and reports the marched radiance at the eye next to the exact integral form
 // L = (1 − α)Le(1 − T) + αL_in(1 − T) + T·L_bg and the cost of the march.
+import type { CpuPictureStage } from '../base/cpuPicture.ts';
 import { defineWidget } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { VRE_RAY } from './schema.ts';
@@ -14,6 +15,8 @@ export interface VreRayFrame {
   result: VreRayResult;
   twin: VreRayResult;
   exact: ExactRadiance;
+  /** The CPU fallback's picture (painted in the compute worker): its size, cost and stage. */
+  picture?: CpuPictureStage;
 }
 
 /** T(0→d) as the march ended it. */
@@ -82,10 +85,18 @@ export const widget = defineWidget<VreRayFrame>({
         },
       },
     ],
-    cost: ({ result }) => ({ milliseconds: result.milliseconds, timing: result.timing }),
-    costLine: ({ result, twin }, how) =>
+    cost: ({ result, picture }) => ({
+      milliseconds: result.milliseconds + (picture?.milliseconds ?? 0),
+      timing: result.timing,
+    }),
+    costLine: ({ result, twin, picture }, how) =>
       `${MARCH_STEPS} midpoint steps in ${formatMilliseconds(result.milliseconds)} (${how}); ` +
-      `float64 march on the CPU in ${formatMilliseconds(twin.milliseconds)}.`,
+      `float64 march on the CPU in ${formatMilliseconds(twin.milliseconds)}` +
+      (picture
+        ? picture.milliseconds > 0
+          ? `; ray ${picture.width}×${picture.height} painted in a worker in ${formatMilliseconds(picture.milliseconds)}.`
+          : `; ray ${picture.width}×${picture.height} from the cache.`
+        : '.'),
   },
   slides: [
     {
