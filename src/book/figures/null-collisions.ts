@@ -73,7 +73,10 @@ export function tentativeCollisions(
   }
 }
 
-export function chooseWalk(p: NullCollisionParameters): { seed: number; walk: TentativeCollision[] } {
+export function chooseWalk(p: NullCollisionParameters): {
+  seed: number;
+  walk: TentativeCollision[];
+} {
   for (let seed = p.seed; seed < p.seed + 10000; seed++) {
     const walk = tentativeCollisions(p, seed);
     const firstReal = walk.findIndex((c) => c.real);
