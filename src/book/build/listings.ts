@@ -89,13 +89,24 @@ export function highlightPseudocode(code: string): string {
     tree,
     classHighlighter,
     (textPart, classes) => {
-      const escaped = escapeHtml(textPart);
+      // Monospace fonts rarely place combining marks (the bar of σ̄, the hat of T̂) over their
+      // letter; such a letter is set in the math font instead (figures.css, .pc-accent).
+      const escaped = escapeHtml(textPart).replace(
+        /\P{M}\p{M}+/gu,
+        (letter) => `<span class="pc-accent">${letter}</span>`,
+      );
       lines[lines.length - 1] += classes ? `<span class="${classes}">${escaped}</span>` : escaped;
     },
     () => lines.push(''),
   );
   // Block lines, no newline between them: under pre-wrap a newline would be a blank line.
-  return lines.map((line) => `<span class="line">${line}</span>`).join('');
+  // A line that is only a comment keeps it inline, so that it wraps in place (figures.css).
+  return lines
+    .map((line) => {
+      const commentOnly = /^\s*<span class="tok-comment">[^]*<\/span>$/.test(line);
+      return `<span class="line${commentOnly ? ' line-comment' : ''}">${line}</span>`;
+    })
+    .join('');
 }
 
 const HEADER = /^implements:\s*(.+)\n---\n/;

@@ -28,8 +28,8 @@ export const DIPOLE_FIGURE: DipoleParameters = {
 };
 
 const WIDTH = 640;
-const HEIGHT = 360;
-const SURFACE_Y = 252;
+const HEIGHT = 322;
+const SURFACE_Y = 214;
 const SOURCE_X = 236;
 
 export function dipoleFigure(p: DipoleParameters = DIPOLE_FIGURE): Diagram {

@@ -276,21 +276,31 @@ export function math(
   pushRuns(runs, source, 0, 0);
   let shift = 0;
   const spans = runs.map((run) => {
-    const dy = (run.shift - shift) * size;
+    // In ems of the tspan's own size, so that CSS may resize a label (figures.css does on
+    // phones) and its scripts follow: the script's size is relative to the <text>.
+    const scale = SCRIPT_SCALE ** run.depth;
+    const dy = (run.shift - shift) / scale;
     shift = run.shift;
     return element(
       'tspan',
       {
         class: run.style,
-        dy: dy === 0 ? undefined : dy,
-        'font-size': run.depth === 0 ? undefined : size * SCRIPT_SCALE ** run.depth,
+        dy: dy === 0 ? undefined : `${num(dy)}em`,
+        'font-size': run.depth === 0 ? undefined : `${num(scale)}em`,
       },
       escapeXml(run.content),
     );
   });
   return element(
     'text',
-    { x, y, 'text-anchor': anchor, class: cls, 'font-size': size },
+    {
+      x,
+      y,
+      'text-anchor': anchor,
+      // figures.css enlarges labels on phones; a smaller label is marked to stay smaller there.
+      class: size < MATH_SIZE ? `${cls} fig-math-small` : cls,
+      'font-size': size,
+    },
     spans.join(''),
   );
 }
