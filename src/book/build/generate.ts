@@ -27,6 +27,7 @@ import { DECK, validateDeck } from './deck.ts';
 import { hostStyleSheet } from '../../widgets/base/definition.ts';
 import { WIDGET_DEFINITIONS } from '../../widgets/catalog.ts';
 import { markRoot, relativizeLinks } from './links.ts';
+import { collectFigureLabels, resolveFigureReferences, type FigureLabel } from './figures.ts';
 import {
   EMBED_INDEX_FILE,
   EMBED_INDEX_SUMMARY,
@@ -55,6 +56,7 @@ export function buildBook(root: string): Book {
   const md = createMarkdown();
   const rendered = new Map<string, RenderedChapter>();
   const equations = new Map<string, EquationLabel>();
+  const figures = new Map<string, FigureLabel>();
   for (const chapter of chapters) {
     const result = renderChapterBody(
       md,
@@ -73,6 +75,13 @@ export function buildBook(root: string): Book {
       }
       equations.set(equation.label, equation);
     }
+    for (const figure of collectFigureLabels(result.html, chapterPath(chapter))) {
+      const existing = figures.get(figure.label);
+      if (existing) {
+        throw new Error(`${chapter.file}: "${figure.label}" is also placed on ${existing.page}`);
+      }
+      figures.set(figure.label, figure);
+    }
     rendered.set(chapter.slug, result);
   }
   const appendixLink: PageLink = { path: `/${APPENDIX_FILE}`, title: APPENDIX_TITLE };
@@ -90,9 +99,9 @@ export function buildBook(root: string): Book {
   chapters.forEach((chapter, index) => {
     const result = rendered.get(chapter.slug);
     if (!result) return;
-    const html = resolveEquationReferences(
-      result.html,
-      equations,
+    const html = resolveFigureReferences(
+      resolveEquationReferences(result.html, equations, chapterPath(chapter), chapter.file),
+      figures,
       chapterPath(chapter),
       chapter.file,
     );

@@ -10,6 +10,7 @@ import { parseQuiz } from './quiz.ts';
 import { WIDGET_CATALOG } from '../../widgets/catalog.ts';
 import { embedExercises } from './exercises.ts';
 import { mathmlArityProblems, repairMathml } from './mathml.ts';
+import { figuresAndListings } from './figures.ts';
 
 export interface TocEntry {
   level: 2 | 3;
@@ -140,6 +141,7 @@ export function createMarkdown(): MarkdownIt {
       renderMath(content, displayMode, env as RenderEnv),
   });
   md.use(anchor, { slugify, level: [2, 3], tabIndex: false });
+  md.use(figuresAndListings);
 
   const defaultFence = md.renderer.rules.fence;
   md.renderer.rules.fence = (tokens, index, options, env, self) => {
