@@ -23,7 +23,7 @@ function readableText(html: string): string {
 }
 
 const SECTION_SIGN = /.{0,50}§.{0,40}/g;
-const PHYSICS_REFERENCE = /.{0,50}(?:physics\.md|physics reference).{0,40}/gi;
+const PHYSICS_REFERENCE = /.{0,50}(?:physics\.md|physics reference|\(rows? \d+\b).{0,40}/gi;
 /** A path into the repository, or a file of it named by its source extension. */
 const REPOSITORY_PATH =
   /.{0,50}(?:\b(?:src|scripts|tests|public|shaders|exercises|bench|chapters)\/[\w.-]+|\b[\w-]+\.(?:wesl|ts|mjs|md)\b).{0,40}/g;
@@ -68,6 +68,16 @@ describe('citations of the numerical reference in doc comments', () => {
       'gives 4.17 ([chapter 11](/chapters/11-z.html)).',
     );
     expect(replaceReferenceCitations('Values (§6.3 table): 5.434', CHAPTERS)).toBe('Values: 5.434');
+    // Rows of the hard-case table cited without the section.
+    expect(replaceReferenceCitations('gives T = 0 exactly (row 10); σt', CHAPTERS)).toBe(
+      'gives T = 0 exactly; σt',
+    );
+    expect(
+      replaceReferenceCitations('not the exact 0 (row 22; the better dipole gives 0)', CHAPTERS),
+    ).toBe('not the exact 0 (the better dipole gives 0)');
+    expect(replaceReferenceCitations('Row 0 is the top row (row 0 of the image).', CHAPTERS)).toBe(
+      'Row 0 is the top row (row 0 of the image).',
+    );
   });
 
   it('leave text without citations unchanged', () => {

@@ -26,6 +26,8 @@ const CHAPTER_OF_SECTION: Readonly<Record<number, number>> = {
 const CITATION =
   /(?:physics\.md\s+)?§(\d+)(?:\.\d+)*(\s+(?:rows?\s+\d+(?:\s*[–-]\s*\d+)?(?:,\s*\d+(?=[),;]))*|table|hazards|conformance vector|benchmark\s+[A-Z]\b|test problem|prints))?/g;
 const DROPPED = '\u0000';
+/** "(row 10", "(rows 19–23": the start of a parenthesis citing rows of the hard-case table. */
+const ROW_CITATION = /\(\s*rows?\s+\d+(?:\s*[–-]\s*\d+)?(?:,\s*\d+)*/;
 
 export interface ChapterLink {
   number: number;
@@ -41,7 +43,7 @@ export function replaceReferenceCitations(
   markdown: string,
   chapters: readonly ChapterLink[],
 ): string {
-  if (!markdown.includes('§')) return markdown;
+  if (!markdown.includes('§') && !ROW_CITATION.test(markdown)) return markdown;
   let text = markdown.replace(CITATION, (_all, section: string, qualifier?: string) => {
     const number = CHAPTER_OF_SECTION[Number(section)];
     const chapter = chapters.find((c) => c.number === number);
@@ -53,6 +55,10 @@ export function replaceReferenceCitations(
   // ", §9 row 21)", "Hard case: §9 row 25, …".
   const d = DROPPED;
   text = text
+    // A row of the hard-case table cited on its own at the start of a parenthesis,
+    // "(row 10)", "(row 22; …)", "(row 12: …)".
+    .replace(new RegExp(`${ROW_CITATION.source}\\s*\\)`, 'g'), `(${d})`)
+    .replace(new RegExp(`${ROW_CITATION.source}\\s*[;:,]\\s*`, 'g'), '(')
     .replace(new RegExp(`\\s*\\(\\s*${d}(?:\\s*[,;]\\s*${d})*\\s*\\)`, 'g'), '')
     .replace(new RegExp(`\\(\\s*${d}\\s*[,;:]\\s*`, 'g'), '(')
     .replace(new RegExp(`\\s*[,;]\\s*${d}(?=\\s*[),;:.])`, 'g'), '')
