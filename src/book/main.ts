@@ -41,22 +41,35 @@ async function loadWidgets(): Promise<void> {
 }
 
 /**
- * A region that scrolls sideways (a wide equation, a long code line) must be
- * reachable by keyboard (WCAG 2.1.1); only those that actually overflow get a tab stop.
+ * A region that scrolls sideways (a wide equation or table on a phone, a long code
+ * line) must be reachable by keyboard (WCAG 2.1.1) and say what it is; only those
+ * that actually overflow get a tab stop, and lose it again when the window widens.
  */
 function makeScrollableRegionsFocusable(): void {
-  for (const region of document.querySelectorAll<HTMLElement>('.equation, pre')) {
-    if (region.scrollWidth > region.clientWidth + 1 && !region.hasAttribute('tabindex')) {
+  for (const region of document.querySelectorAll<HTMLElement>('.equation, .table-scroll, pre')) {
+    const overflows = region.scrollWidth > region.clientWidth + 1;
+    if (overflows && !region.hasAttribute('tabindex')) {
       region.tabIndex = 0;
+      region.dataset['scrollRegion'] = '';
       region.setAttribute('role', 'region');
-      region.setAttribute(
-        'aria-label',
-        region.classList.contains('equation')
-          ? 'Equation (scrolls sideways)'
-          : 'Code (scrolls sideways)',
-      );
+      region.setAttribute('aria-label', `${scrollRegionName(region)} (scrolls sideways)`);
+    } else if (!overflows && region.hasAttribute('data-scroll-region')) {
+      for (const name of ['tabindex', 'role', 'aria-label', 'data-scroll-region'])
+        region.removeAttribute(name);
     }
   }
+}
+
+function scrollRegionName(region: HTMLElement): string {
+  if (region.classList.contains('equation')) {
+    const number = region.querySelector('.equation-number')?.textContent;
+    return number ? `Equation ${number}` : 'Equation';
+  }
+  if (region.classList.contains('table-scroll')) {
+    const caption = region.querySelector('caption')?.textContent?.trim();
+    return caption ? `Table: ${caption}` : 'Table';
+  }
+  return 'Code';
 }
 
 setupThemeToggle();

@@ -28,8 +28,9 @@ describe('<sb-exercise> in a chapter', () => {
   );
 
   it('renders the statement with math typeset at build time, headings under the section', () => {
-    expect(result.html).toContain(
-      '<sb-exercise exercise="slab"><div class="sb-exercise-statement">',
+    // Before the statement: which browsers run the checks, so a student knows before writing code.
+    expect(result.html).toMatch(
+      /<sb-exercise exercise="slab"><p class="sb-exercise-browsers">[^<]*<strong>Browsers\.<\/strong>[^<]*Chrome or Edge \(113 or later\), Safari 26 or later, Firefox 141 or later on Windows[^<]*<\/p><div class="sb-exercise-statement">/,
     );
     // Not inside a paragraph: a <div> there would end the <p> and leave the element empty.
     expect(result.html).not.toMatch(/<p>\s*<sb-exercise/);

@@ -5,6 +5,7 @@
 import type MarkdownIt from 'markdown-it';
 import type { ShaderModuleDocs } from './shaderDocs.ts';
 import type { TocEntry } from './markdown.ts';
+import { replaceReferenceCitations, type ChapterLink } from './citations.ts';
 
 function escapeHtml(text: string): string {
   return text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
@@ -19,8 +20,11 @@ export function renderAppendix(
   md: MarkdownIt,
   modules: readonly ShaderModuleDocs[],
   env: unknown,
+  chapters: readonly ChapterLink[] = [],
 ): { html: string; toc: TocEntry[] } {
   const toc: TocEntry[] = [];
+  // The doc comments cite the developers' numerical reference; readers get chapters.
+  const doc = (markdown: string): string => replaceReferenceCitations(markdown, chapters);
   const parts: string[] = [
     md.render(
       'Each figure in this book is computed by kernels that import these modules; each function has a float64 ' +
@@ -33,7 +37,7 @@ export function renderAppendix(
     const id = `module-${module.name}`;
     toc.push({ level: 2, id, text: module.name });
     parts.push(`<h2 id="${id}"><code>${module.name}</code></h2>`);
-    if (module.description) parts.push(md.render(module.description, env));
+    if (module.description) parts.push(md.render(doc(module.description), env));
     parts.push(
       `<p class="twin-note">Source <code>shaders/${module.name}.wesl</code>; twin <code>src/reference/${module.name}.ts</code>.</p>`,
     );
@@ -46,7 +50,7 @@ export function renderAppendix(
         `<section class="api-entry" id="${declarationId}">` +
           `<h3><code>${declaration.name}</code> <span class="api-kind">${declaration.kind}</span></h3>` +
           `<pre class="api-signature"><code>${escapeHtml(declaration.signature)}</code></pre>` +
-          (declaration.doc ? md.render(declaration.doc, env) : '') +
+          (declaration.doc ? md.render(doc(declaration.doc), env) : '') +
           `</section>`,
       );
     }

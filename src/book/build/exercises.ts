@@ -15,6 +15,19 @@ const EXERCISE_TAG =
   /<p>\s*<sb-exercise([^>]*)>\s*<\/sb-exercise>\s*<\/p>|<sb-exercise([^>]*)>\s*<\/sb-exercise>/g;
 const EXERCISE_ID = /^[a-z0-9]+(?:-[a-z0-9]+)*$/;
 
+/**
+ * Said before the statement, in the page as built: which browsers run an exercise's
+ * checks (WebGPU), so that a student knows before writing code. The exercise element
+ * replaces it, once it runs, with the same list and whether this browser can
+ * (src/widgets/exercise/view.ts, buildGradingNote and checkGpu). Versions as in
+ * README "Browser support": WebGPU shipped in Chrome/Edge 113, Safari 26, Firefox 141 (Windows).
+ */
+export const EXERCISE_BROWSERS =
+  '<strong>Browsers.</strong> The checks of this exercise run on your GPU through WebGPU: ' +
+  'Chrome or Edge (113 or later), Safari 26 or later, Firefox 141 or later on Windows ' +
+  '(elsewhere once WebGPU is enabled). In other browsers you can write, save and download ' +
+  'your solution, but the checks cannot run.';
+
 function escapeHtml(text: string): string {
   return text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
 }
@@ -61,6 +74,7 @@ export function embedExercises(
     const starter = readFileSync(starterFile, 'utf8');
     return (
       `<sb-exercise${attrs}>` +
+      `<p class="sb-exercise-browsers">${EXERCISE_BROWSERS}</p>` +
       `<div class="sb-exercise-statement">${statement}</div>` +
       `<details class="sb-exercise-starter"><summary>Starter code (WGSL)</summary>` +
       `<pre><code class="language-wgsl">${escapeHtml(starter)}</code></pre></details>` +

@@ -127,6 +127,7 @@ export function buildBook(root: string): Book {
     md,
     loadShaderDocs(join(root, 'shaders')),
     createRenderEnv('A', appendixLink.path, 'shaders/*.wesl'),
+    chapters.map((chapter) => ({ number: chapter.number, path: chapterPath(chapter) })),
   );
   pages.push({
     file: APPENDIX_FILE,

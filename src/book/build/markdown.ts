@@ -143,6 +143,13 @@ export function createMarkdown(): MarkdownIt {
   md.use(anchor, { slugify, level: [2, 3], tabIndex: false });
   md.use(figuresAndListings);
 
+  // A table scrolls inside its own box when a narrow screen cannot fit it (book.css
+  // lays tables out compactly first); the page itself never scrolls sideways.
+  md.renderer.rules.table_open = (tokens, index, options, _env, self) =>
+    `<div class="table-scroll">${self.renderToken(tokens, index, options)}`;
+  md.renderer.rules.table_close = (tokens, index, options, _env, self) =>
+    `${self.renderToken(tokens, index, options)}</div>\n`;
+
   const defaultFence = md.renderer.rules.fence;
   md.renderer.rules.fence = (tokens, index, options, env, self) => {
     const token = tokens[index];
