@@ -12,7 +12,6 @@ import {
   renderChapterBody,
   resolveEquationReferences,
 } from '../../src/book/build/markdown.ts';
-import { parseQuiz } from '../../src/book/build/quiz.ts';
 import { loadShaderDocs, parseShaderModule } from '../../src/book/build/shaderDocs.ts';
 import { WIDGET_CATALOG } from '../../src/widgets/catalog.ts';
 import { parseParameters } from '../../src/widgets/parameters.ts';
@@ -25,7 +24,7 @@ function render(body: string) {
 }
 
 describe('the book builds', () => {
-  it('has a home page, one page per chapter numbered from the file names, the library appendix and the deck', () => {
+  it('has a home page, one page per chapter numbered from the file names, the library appendix, the deck, the embeds and the answer key', () => {
     expect(book.pages[0]?.file).toBe('index.html');
     // Numbers come from the file names and increase; the book may skip numbers while
     // chapters are being written (DESIGN.md numbers them in lecture order).
@@ -39,6 +38,7 @@ describe('the book builds', () => {
       'deck.html',
       ...Object.keys(WIDGET_CATALOG).map((widget) => `embed/${widget}.html`),
       'embed/index.html',
+      'appendix/answers.html',
     ]);
   });
 
@@ -165,33 +165,6 @@ describe('chapter sources', () => {
     expect(render('<sb-beer-law thickness="2"></sb-beer-law>\n').html).toMatch(
       /<sb-beer-law thickness="2"><p class="widget-fallback">/,
     );
-  });
-});
-
-describe('quizzes', () => {
-  it('parse question, options, the one right answer and the explanation', () => {
-    const quiz = parseQuiz('? Q?\n+ right\n- wrong\n> because\n> more', 'f.md');
-    expect(quiz.question).toBe('Q?');
-    expect(quiz.options).toEqual([
-      { text: 'right', correct: true },
-      { text: 'wrong', correct: false },
-    ]);
-    expect(quiz.explanation).toBe('because\nmore');
-  });
-
-  it('reject quizzes with no or two right answers, or no explanation', () => {
-    expect(() => parseQuiz('? Q\n- a\n- b\n> e', 'f.md')).toThrow(/exactly one/);
-    expect(() => parseQuiz('? Q\n+ a\n+ b\n> e', 'f.md')).toThrow(/exactly one/);
-    expect(() => parseQuiz('? Q\n+ a\n- b', 'f.md')).toThrow(/explanation/);
-    expect(() => parseQuiz('? Q\n+ a\n* b\n> e', 'f.md')).toThrow(/must start with/);
-  });
-
-  it('render as a form that works without JavaScript (explanation in <details>)', () => {
-    const html = render('```quiz\n? Is $x$ > 0?\n+ yes\n- no\n> Because $x = 1$.\n```\n').html;
-    expect(html).toContain('<form class="quiz"');
-    expect(html).toContain('data-correct');
-    expect(html).toContain('<details class="quiz-explanation">');
-    expect(html).toContain('class="katex"');
   });
 });
 

@@ -13,6 +13,8 @@ export interface ChapterSource {
   summary: string;
   /** Markdown body without the front matter. */
   body: string;
+  /** Lines of the file before the body (the front matter), so errors can cite file lines. */
+  bodyOffset?: number;
   file: string;
 }
 
@@ -44,6 +46,7 @@ export function parseChapter(file: string, text: string): ChapterSource {
     title: title.trim(),
     summary: summary.trim(),
     body: text.slice(front[0].length),
+    bodyOffset: front[0].split('\n').length - 1,
     file,
   };
 }

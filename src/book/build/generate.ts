@@ -28,6 +28,7 @@ import { hostStyleSheet } from '../../widgets/base/definition.ts';
 import { WIDGET_DEFINITIONS } from '../../widgets/catalog.ts';
 import { markRoot, relativizeLinks } from './links.ts';
 import { collectFigureLabels, resolveFigureReferences, type FigureLabel } from './figures.ts';
+import { renderAnswerKey, sealQuizzes } from './quiz.ts';
 import {
   EMBED_INDEX_FILE,
   EMBED_INDEX_SUMMARY,
@@ -36,6 +37,11 @@ import {
   renderEmbedIndex,
   renderEmbedPage,
 } from './embeds.ts';
+
+const ANSWERS_FILE = 'appendix/answers.html';
+const ANSWERS_TITLE = 'Answers to the questions';
+const ANSWERS_SUMMARY =
+  'Every question of the chapters with its answer, and why each other option is wrong.';
 
 export interface BookPage {
   /** Path relative to the project root, e.g. `chapters/02-extinction-and-transmittance.html`. */
@@ -65,6 +71,7 @@ export function buildBook(root: string): Book {
       chapterPath(chapter),
       chapter.file,
       join(root, 'exercises'),
+      chapter.bodyOffset ?? 0,
     );
     for (const equation of result.equations) {
       const existing = equations.get(equation.label);
@@ -86,12 +93,14 @@ export function buildBook(root: string): Book {
   }
   const appendixLink: PageLink = { path: `/${APPENDIX_FILE}`, title: APPENDIX_TITLE };
   const embedIndexLink: PageLink = { path: `/${EMBED_INDEX_FILE}`, title: EMBED_INDEX_TITLE };
+  const answersLink: PageLink = { path: `/${ANSWERS_FILE}`, title: ANSWERS_TITLE };
   const pages: BookPage[] = [
     {
       file: 'index.html',
       html: renderHomePage(chapters, [
         { ...appendixLink, summary: APPENDIX_SUMMARY },
         { ...embedIndexLink, summary: EMBED_INDEX_SUMMARY },
+        { ...answersLink, summary: ANSWERS_SUMMARY },
       ]),
       widgets: [],
     },
@@ -177,9 +186,42 @@ export function buildBook(root: string): Book {
     }),
     widgets: [],
   });
+  // The answer key: where a reader without JavaScript finds the answers (build/quiz.ts).
+  pages.push({
+    file: ANSWERS_FILE,
+    html: renderArticlePage({
+      kicker: 'Appendix',
+      title: ANSWERS_TITLE,
+      summary: ANSWERS_SUMMARY,
+      html: resolveEquationReferences(
+        renderAnswerKey(
+          chapters.map((chapter) => ({
+            title: chapter.title,
+            number: chapter.number,
+            page: chapterPath(chapter),
+            quizzes: rendered.get(chapter.slug)?.quizzes ?? [],
+          })),
+        ),
+        equations,
+        answersLink.path,
+        'chapters/*.md (quizzes)',
+      ),
+      toc: chapters
+        .filter((chapter) => (rendered.get(chapter.slug)?.quizzes.length ?? 0) > 0)
+        .map((chapter) => ({
+          level: 2 as const,
+          id: `answers-chapter-${chapter.number}`,
+          text: `Chapter ${chapter.number}`,
+        })),
+      previous: embedIndexLink,
+    }),
+    widgets: [],
+  });
   // Every page's links to other pages become relative to it (links.ts), so the site
   // works under any base path.
-  for (const page of pages) page.html = markRoot(relativizeLinks(page.html, page.file), page.file);
+  // Quiz feedback is encoded last, once its equation references and links are final.
+  for (const page of pages)
+    page.html = sealQuizzes(markRoot(relativizeLinks(page.html, page.file), page.file), page.file);
   return { chapters, pages, equations };
 }
 

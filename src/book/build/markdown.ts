@@ -6,7 +6,7 @@ import katex from 'katex';
 import MarkdownIt from 'markdown-it';
 import anchor from 'markdown-it-anchor';
 import { tex } from '@mdit/plugin-tex';
-import { parseQuiz } from './quiz.ts';
+import { parseQuiz, renderQuiz, type AnswerKeyEntry } from './quiz.ts';
 import { WIDGET_CATALOG } from '../../widgets/catalog.ts';
 import { embedExercises } from './exercises.ts';
 import { mathmlArityProblems, repairMathml } from './mathml.ts';
@@ -31,6 +31,8 @@ export interface RenderedChapter {
   toc: TocEntry[];
   equations: EquationLabel[];
   widgets: string[];
+  /** The chapter's quizzes, for the answer key (build/quiz.ts). */
+  quizzes: AnswerKeyEntry[];
 }
 
 export interface RenderEnv {
@@ -40,6 +42,9 @@ export interface RenderEnv {
   file: string;
   equations: EquationLabel[];
   quizCount: number;
+  quizzes: AnswerKeyEntry[];
+  /** Lines of the source file before the Markdown body, so errors can cite file lines. */
+  lineOffset: number;
 }
 
 const LABEL = /\\label\{([^}]+)\}/g;
@@ -100,29 +105,6 @@ function renderMath(content: string, displayMode: boolean, env: RenderEnv): stri
   );
 }
 
-function renderQuiz(md: MarkdownIt, source: string, env: RenderEnv): string {
-  const quiz = parseQuiz(source, env.file);
-  env.quizCount += 1;
-  const id = `quiz-${env.quizCount}`;
-  const options = quiz.options
-    .map(
-      (option, index) =>
-        `<li><label><input type="radio" name="${id}" value="${index}"` +
-        `${option.correct ? ' data-correct' : ''}> <span>${md.renderInline(option.text, env)}</span></label></li>`,
-    )
-    .join('');
-  return (
-    `<form class="quiz" id="${id}" aria-labelledby="${id}-question">` +
-    `<p class="quiz-kicker">Question</p>` +
-    `<p class="quiz-question" id="${id}-question">${md.renderInline(quiz.question, env)}</p>` +
-    `<ul class="quiz-options">${options}</ul>` +
-    `<div class="quiz-actions"><button type="submit" class="button">Check answer</button>` +
-    `<p class="quiz-feedback" role="status" aria-live="polite"></p></div>` +
-    `<details class="quiz-explanation"><summary>Explanation</summary>${md.render(quiz.explanation, env)}</details>` +
-    `</form>`
-  );
-}
-
 /** The text a widget shows where it cannot run (no JavaScript, or before it loads). */
 function widgetFallback(name: string): string {
   const entry = WIDGET_CATALOG[name];
@@ -153,8 +135,12 @@ export function createMarkdown(): MarkdownIt {
   const defaultFence = md.renderer.rules.fence;
   md.renderer.rules.fence = (tokens, index, options, env, self) => {
     const token = tokens[index];
-    if (token && token.info.trim() === 'quiz')
-      return renderQuiz(md, token.content, env as RenderEnv);
+    if (token && token.info.trim() === 'quiz') {
+      const renderEnv = env as RenderEnv;
+      // token.map[0] is the fence's 0-based line; its body starts one line below.
+      const firstLine = renderEnv.lineOffset + (token.map?.[0] ?? 0) + 2;
+      return renderQuiz(md, parseQuiz(token.content, renderEnv.file, firstLine), renderEnv);
+    }
     return defaultFence ? defaultFence(tokens, index, options, env, self) : '';
   };
 
@@ -176,7 +162,7 @@ export function createRenderEnv(
   page: string,
   file: string,
 ): RenderEnv {
-  return { chapterNumber, page, file, equations: [], quizCount: 0 };
+  return { chapterNumber, page, file, equations: [], quizCount: 0, quizzes: [], lineOffset: 0 };
 }
 
 /** Renders one chapter body. Equation references are resolved later, across chapters. */
@@ -187,8 +173,10 @@ export function renderChapterBody(
   page: string,
   file: string,
   exercisesDir = fileURLToPath(new URL('../../../exercises', import.meta.url)),
+  lineOffset = 0,
 ): RenderedChapter {
   const env = createRenderEnv(chapterNumber, page, file);
+  env.lineOffset = lineOffset;
   const tokens = md.parse(body, env);
   const toc: TocEntry[] = [];
   tokens.forEach((token, index) => {
@@ -215,7 +203,7 @@ export function renderChapterBody(
     widgets.push(name);
     return `<${tag}${attrs}>${widgetFallback(name)}</${tag}>`;
   });
-  return { html, toc, equations: env.equations, widgets };
+  return { html, toc, equations: env.equations, widgets, quizzes: env.quizzes };
 }
 
 /**
