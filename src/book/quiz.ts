@@ -94,8 +94,8 @@ async function check(form: HTMLFormElement, seed: string, announce: boolean): Pr
   else
     showFeedback(
       form,
-      'Not quite. Why this option is wrong:',
-      `${feedback.h ?? ''}<p class="quiz-hint">Try another option.</p>`,
+      'Not quite.',
+      `${feedback.h ?? ''}<p class="quiz-hint">Try another option, or show the answer.</p>`,
     );
   const reveal = form.querySelector<HTMLButtonElement>('.quiz-reveal');
   if (reveal) reveal.hidden = correct;

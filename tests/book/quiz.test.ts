@@ -62,12 +62,12 @@ describe('quiz syntax', () => {
       ['wrong', false, 'because', 12],
       ['other', false, 'why not', 14],
     ]);
-    expect(quiz.explanation).toBe('explained\nmore');
+    expect(quiz.explanation).toBe('explained\n\nmore');
   });
 
-  it('joins several "  > why" lines of one option', () => {
+  it('keeps several "  > why" lines of one option as paragraphs', () => {
     const quiz = parseQuiz('? Q\n+ a\n- b\n  > one\n  > two\n> e', 'f.md');
-    expect(quiz.options[1]?.why).toBe('one\ntwo');
+    expect(quiz.options[1]?.why).toBe('one\n\ntwo');
   });
 
   it('requires a reason for every wrong option, naming the file and line of the option', () => {

@@ -89,27 +89,6 @@ test('equation references resolve to numbered, existing equations', async ({ pag
   }
 });
 
-test('quizzes give feedback and remember the answer', async ({ page }) => {
-  const chapter = chapters.find((p) => p.slug.startsWith('02-'));
-  expect(chapter, 'chapter 2 holds the milk quiz').toBeDefined();
-  await page.goto(chapter?.path ?? '');
-  const quiz = page.locator('form.quiz').filter({ hasText: 'milk' }).first();
-  await quiz.scrollIntoViewIfNeeded();
-  const wrong = quiz.locator('input:not([data-correct])').first();
-  await wrong.check();
-  await quiz.getByRole('button', { name: 'Check answer' }).click();
-  await expect(quiz).toHaveClass(/is-wrong/);
-  await expect(quiz.locator('.quiz-feedback')).toContainText('Not quite');
-  await quiz.locator('input[data-correct]').check();
-  await quiz.getByRole('button', { name: 'Check answer' }).click();
-  await expect(quiz).toHaveClass(/is-correct/);
-  await expect(quiz.locator('.quiz-explanation')).toHaveAttribute('open', '');
-  await page.reload();
-  await expect(page.locator('form.quiz').filter({ hasText: 'milk' }).first()).toHaveClass(
-    /is-correct/,
-  );
-});
-
 test('the theme button switches between light and dark', async ({ page }) => {
   await page.emulateMedia({ colorScheme: 'light' });
   await page.goto('/index.html');

@@ -10,6 +10,8 @@
 //     > more of it                misconception the option reflects)
 //   > explanation               (the right answer's explanation, Markdown)
 //
+// Every `>` line, indented or not, is a paragraph of its own.
+//
 // The order in the source does not matter: options are identified by a hash of
 // their text (quizCode.ts), written in the order of those hashes and shuffled per
 // page load by the script. The page never says in plain text which option is right:
@@ -63,7 +65,7 @@ export function parseQuiz(source: string, where: string, firstLine = 1): Quiz {
         throw new Error(
           `${at(lineNumber)}: the right option is explained by the quiz's unindented "> " lines, not by "  > why"`,
         );
-      option.why = option.why ? `${option.why}\n${rest}` : rest;
+      option.why = option.why ? `${option.why}\n\n${rest}` : rest;
       return;
     }
     if (marker === '?') question = question ? `${question} ${rest}` : rest;
@@ -89,7 +91,8 @@ export function parseQuiz(source: string, where: string, firstLine = 1): Quiz {
   const texts = new Set(options.map((option) => option.text));
   if (texts.size !== options.length) throw new Error(`${at(firstLine)}: two options are the same`);
   if (explanation.length === 0) throw new Error(`${at(firstLine)}: quiz needs a "> explanation"`);
-  return { question, options, explanation: explanation.join('\n'), line: firstLine };
+  // Each `>` line is a paragraph (as the chapters write them: one idea per line).
+  return { question, options, explanation: explanation.join('\n\n'), line: firstLine };
 }
 
 /** A quiz of a chapter, rendered for the answer key. */
