@@ -3,7 +3,7 @@
 // the same order, the keyboard works, the page passes axe in both themes, and a
 // reader without JavaScript finds the answer in the answer key. The right option is
 // known here from the Markdown source, never from the page.
-import { readFileSync } from 'node:fs';
+import { readdirSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
@@ -47,6 +47,17 @@ async function answer(page: Page, quiz: Locator, id: string): Promise<void> {
 }
 
 const [milk, slab] = sourceQuizzes(CHAPTER);
+
+/** How many quizzes the chapters hold (the answer key lists each once). */
+function sourceQuizCount(): number {
+  const dir = fileURLToPath(new URL('../../chapters', import.meta.url));
+  return readdirSync(dir)
+    .filter((name) => /^\d{2}-.*\.md$/.test(name))
+    .reduce(
+      (n, name) => n + readFileSync(`${dir}/${name}`, 'utf8').split('```quiz\n').length - 1,
+      0,
+    );
+}
 
 test('before an answer the page holds no marker of the right option and no explanation', async ({
   page,
@@ -172,6 +183,17 @@ for (const scheme of ['light', 'dark'] as const) {
     await answer(page, page.locator('#quiz-1'), milk!.right.id);
     await expect(page.locator('#quiz-1')).toHaveClass(/is-correct/);
     expect(await check()).toEqual([]);
+  });
+  test(`the answer key passes axe in the ${scheme} theme, with an answer open`, async ({
+    page,
+  }) => {
+    await page.emulateMedia({ colorScheme: scheme });
+    await page.goto('/appendix/answers.html');
+    await expect(page.locator('section.answer')).toHaveCount(sourceQuizCount());
+    await page.locator('section.answer summary').first().click();
+    await page.evaluate(() => document.fonts.ready.then(() => undefined));
+    const results = await new AxeBuilder({ page }).withTags(['wcag2a', 'wcag2aa']).analyze();
+    expect(results.violations.map((v) => v.id)).toEqual([]);
   });
 }
 
