@@ -183,6 +183,7 @@ export function buildBook(root: string): Book {
         { level: 2, id: 'embed-list', text: 'The figures' },
       ],
       previous: appendixLink,
+      next: answersLink,
     }),
     widgets: [],
   });
