@@ -121,6 +121,24 @@ async function reveal(form: HTMLFormElement): Promise<void> {
   showFeedback(form, `The answer is: ${optionText(right)}`, await explanationOf(form, right));
 }
 
+function escapeHtml(text: string): string {
+  return text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
+}
+
+/** A blob that does not decode (a page from another build, say) is reported in the quiz, not thrown. */
+async function safely(form: HTMLFormElement, work: Promise<void>): Promise<void> {
+  try {
+    await work;
+  } catch (error) {
+    showFeedback(
+      form,
+      'This question could not be checked.',
+      `<p class="quiz-hint">${escapeHtml(error instanceof Error ? error.message : String(error))}. ` +
+        `Reload the page; the answer key lists every answer.</p>`,
+    );
+  }
+}
+
 function setupQuiz(form: HTMLFormElement): boolean {
   const { seed, fromLink } = seedFor(form);
   form.dataset['seed'] = seed;
@@ -131,9 +149,11 @@ function setupQuiz(form: HTMLFormElement): boolean {
   if (link) link.href = widgetLink(form.id, [[ORDER_KEY, seed]]);
   form.addEventListener('submit', (event) => {
     event.preventDefault();
-    void check(form, seed, true);
+    void safely(form, check(form, seed, true));
   });
-  form.querySelector('.quiz-reveal')?.addEventListener('click', () => void reveal(form));
+  form
+    .querySelector('.quiz-reveal')
+    ?.addEventListener('click', () => void safely(form, reveal(form)));
   let saved: string | null = null;
   try {
     saved = localStorage.getItem(storageKey(form));
@@ -146,7 +166,7 @@ function setupQuiz(form: HTMLFormElement): boolean {
       : form.querySelector<HTMLInputElement>(`input[value="${CSS.escape(saved)}"]`);
   if (input) {
     input.checked = true;
-    void check(form, seed, false);
+    void safely(form, check(form, seed, false));
   }
   return fromLink;
 }
