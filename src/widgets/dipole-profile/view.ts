@@ -34,6 +34,7 @@ import {
   type ProfileInputs,
 } from './model.ts';
 import { ProfilePlot, profileLegend } from './profilePlot.ts';
+import { betterDipoleNote } from './modelNote.ts';
 import { count, type DipoleFrame, type MonteCarloSummary } from './widget.ts';
 
 /** Side of the disc picture on the GPU (pixels). */
@@ -102,6 +103,9 @@ export function createView(
   /** Bumped to stop a progressive run (Cancel, a new medium, a lost device). */
   let mcToken = 0;
   let running = false;
+
+  /** Says what the better dipole leaves out, with this medium's reduced albedos (issue 17). */
+  const modelNote = document.createElement('p');
 
   const setStatus = (text: string): void => {
     status.textContent = text;
@@ -284,7 +288,8 @@ export function createView(
         'aria-label',
         'Log–log plot of the diffuse reflectance profile Rd(r) per colour channel: dipole, better dipole, Christensen–Burley and Monte Carlo with error bars',
       );
-      stage.append(plotArea, profileLegend());
+      modelNote.className = 'sb-dp-model-note';
+      stage.append(plotArea, profileLegend(), modelNote);
       plot = new ProfilePlot(plotArea);
 
       const row = document.createElement('div');
@@ -399,6 +404,7 @@ export function createView(
     /** Plot, totals, the capped notice and the error plot from the current curves and Monte Carlo. */
     show({ inputs, curves: shown, monteCarlo }) {
       const channels = estimates();
+      modelNote.textContent = betterDipoleNote(inputs, monteCarlo);
       plot?.update({ curves: shown, monteCarlo: channels?.map((e) => e.profile) ?? null });
       const setTotal = (row: string, channel: number, text: string): void => {
         const cell = totalCells.get(`${row}-${CHANNEL_NAMES[channel]}`);

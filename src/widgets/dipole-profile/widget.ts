@@ -107,7 +107,7 @@ export const widget = defineWidget<DipoleFrame>({
       monteCarloRow('dipole-error', 'Dipole − MC (R · G · B)', (summary) =>
         modelError(summary, 'dipole'),
       ),
-      monteCarloRow('better-error', 'Better dipole − MC', (summary) =>
+      monteCarloRow('better-error', 'Better dipole (one source) − MC', (summary) =>
         modelError(summary, 'better'),
       ),
       monteCarloRow('collisions', 'Collisions per photon', (summary) =>
