@@ -9,6 +9,7 @@
 // be cancelled. Without WebGPU the float64 twins do all of it on the CPU.
 import { defineWidget, type Preset, type ReadoutValue } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import type { Refinement } from '../base/refinement.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { findMaterial } from '../../subsurface/materials.ts';
 import { DIPOLE_PROFILE } from './schema.ts';
@@ -44,6 +45,8 @@ export interface DipoleFrame {
   /** How the Monte Carlo was timed (timingLabel), '' before its first run. */
   mcTiming: string;
   monteCarlo: MonteCarloSummary | null;
+  /** A preview (the models before the Monte Carlo's first run); absent at full quality. */
+  refinement?: Refinement;
 }
 
 /** A photon count exactly, with thin spaces between groups of three digits (65 536). */
