@@ -59,6 +59,7 @@ import {
 } from './model.ts';
 import { histogram, phantomVolume } from './phantom.ts';
 import { CONTROL_POINTS } from './schema.ts';
+import { terminationSaving, type TerminationTimes } from './saving.ts';
 import { formatCount, type TransferFrame } from './widget.ts';
 
 /** Degrees the camera turns per CSS pixel of drag, and per arrow key press. */
@@ -97,15 +98,6 @@ interface Frame extends TransferFrame {
   refinement: Refinement;
 }
 
-/** Time with and without early termination for one full-quality frame (best of two each). */
-interface TerminationTimes {
-  /** Milliseconds of the frame's own setting, and of the other one (two frames each). */
-  current: [number, number];
-  other: [number, number];
-  /** Steps the other setting took (the frame's own are in the frame). */
-  otherSteps: number;
-}
-
 /**
  * Image sides of the progressive refinement (issue 23): a quarter, a half and all of the
  * full side, one sixteenth, a quarter and all of the rays. The ladder starts on the
@@ -119,10 +111,6 @@ function sizeLadder(full: number, firstBudgetMs: number): Ladder<number> {
   });
   return new Ladder([rung(full / 4), rung(full / 2), rung(full)], firstBudgetMs);
 }
-
-/** The share a part is of a whole, in per cent, to three digits ("0.00225%", "100%"). */
-const percentOf = (part: number, whole: number): string =>
-  `${formatNumber(whole > 0 ? (100 * part) / whole : 0, 3)}%`;
 
 export function createView(context: ViewContext<Renderer>): WidgetView<TransferFrame, Renderer> {
   const volumeCanvas = imageCanvas(
@@ -303,39 +291,9 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
   const savingKey = (frame: Frame): string =>
     `${frame.key}|${frame.inputs.step}|${frame.inputs.epsilon}`;
 
-  /**
-   * What early termination saves, for this frame and nothing older (issue 17: the row
-   * kept an old view's numbers until a reference finished, and quoted a time saving that
-   * timing noise made up). Steps come from the frame itself with termination on (the
-   * kernel counts the steps each ray would take without it), so they agree with "Steps
-   * taken"; time needs the other setting rendered, and a difference within the spread
-   * of repeated frames is called noise rather than a saving.
-   */
-  const showSaving = (frame: Frame): void => {
-    const { inputs, image } = frame;
-    const measured = otherMode.get(savingKey(frame));
-    const stepsOn = inputs.termination ? image.steps : measured?.otherSteps;
-    const stepsOff = inputs.termination ? image.plannedSteps : image.steps;
-    const steps =
-      stepsOn === undefined
-        ? 'steps: measuring…'
-        : `${percentOf(stepsOff - stepsOn, stepsOff)} of the steps (${formatCount(stepsOff - stepsOn)} of ${formatCount(stepsOff)})`;
-    if (!measured) {
-      set('saving', `${steps}; time: measuring…`);
-      return;
-    }
-    const on = inputs.termination ? measured.current : measured.other;
-    const off = inputs.termination ? measured.other : measured.current;
-    const best = (pair: [number, number]): number => Math.min(...pair);
-    const spread = Math.max(Math.abs(on[0] - on[1]), Math.abs(off[0] - off[1]));
-    const difference = best(off) - best(on);
-    const times = `${formatMilliseconds(best(on))} with, ${formatMilliseconds(best(off))} without, best of 2 frames each`;
-    const time =
-      Math.abs(difference) <= spread
-        ? `no time saved beyond the timing noise (${times}; frames vary by ${formatMilliseconds(spread)})`
-        : `${percentOf(difference, best(off))} of the time (${times})`;
-    set('saving', `${steps}; ${time}`);
-  };
+  /** The saving row of a full-quality frame (saving.ts), with its timing if measured. */
+  const showSaving = (frame: Frame): void =>
+    set('saving', terminationSaving(frame, otherMode.get(savingKey(frame))));
 
   /**
    * Measures a full-quality frame's cost with and without early termination, for the
