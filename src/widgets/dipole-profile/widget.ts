@@ -139,7 +139,7 @@ export const widget = defineWidget<DipoleFrame>({
       _how,
       backend,
     ) =>
-      `${backend.kind === 'cpu' ? 'float64 twins, ' : ''}3 models × 3 channels × ${curves.radii.length} radii in ${formatMilliseconds(curvesMilliseconds)}; Monte Carlo ${count(photons)} photons per channel in ${formatMilliseconds(mcMilliseconds)} (${mcTiming || '—'}), half-space, ${inputs.g > 0 ? `HG g = ${inputs.g}` : 'isotropic scattering'}, η = ${inputs.eta}.`,
+      `${backend.kind === 'cpu' ? 'float64 twins, ' : ''}3 models × 3 channels × ${curves.radii.length} radii in ${formatMilliseconds(curvesMilliseconds)}; ${photons > 0 ? `Monte Carlo ${count(photons)} photons per channel in ${formatMilliseconds(mcMilliseconds)} (${mcTiming || '—'})` : 'the Monte Carlo’s first run follows'}, half-space, ${inputs.g > 0 ? `HG g = ${inputs.g}` : 'isotropic scattering'}, η = ${inputs.eta}.`,
   },
   slides: [
     {
