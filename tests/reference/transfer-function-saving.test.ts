@@ -40,7 +40,9 @@ describe('terminationSaving', () => {
       otherSteps: 44_400_000,
     });
     expect(text).toMatch(/^0\.00225% of the steps/);
-    expect(text).toMatch(/no time saved beyond the timing noise \(300\.0 ms with, 820\.0 ms without/);
+    expect(text).toMatch(
+      /no time saved beyond the timing noise \(300\.0 ms with, 820\.0 ms without/,
+    );
     expect(text).not.toMatch(/of the time/);
   });
 });
