@@ -15,7 +15,7 @@ export const CHANNEL_COLOURS = ['#d9473f', '#2f9e4f', '#3d6fd6'] as const;
 
 const METHODS = [
   { key: 'dipole', label: 'dipole', dash: [] as number[] },
-  { key: 'better', label: 'better dipole', dash: [7, 4] },
+  { key: 'better', label: 'better dipole (one source, α′², d’Eon 2012)', dash: [7, 4] },
   { key: 'burley', label: 'Christensen–Burley', dash: [2, 3] },
 ] as const;
 

@@ -8,6 +8,7 @@ import type { FrameBackend } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
+import type { FrameRequest } from '../base/refinement.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import {
   appendBatches,
@@ -34,6 +35,7 @@ import {
   type ProfileInputs,
 } from './model.ts';
 import { ProfilePlot, profileLegend } from './profilePlot.ts';
+import { betterDipoleNote } from './modelNote.ts';
 import { count, type DipoleFrame, type MonteCarloSummary } from './widget.ts';
 
 /** Side of the disc picture on the GPU (pixels). */
@@ -102,6 +104,9 @@ export function createView(
   /** Bumped to stop a progressive run (Cancel, a new medium, a lost device). */
   let mcToken = 0;
   let running = false;
+
+  /** Says what the better dipole leaves out, with this medium's reduced albedos (issue 17). */
+  const modelNote = document.createElement('p');
 
   const setStatus = (text: string): void => {
     status.textContent = text;
@@ -260,6 +265,7 @@ export function createView(
     inputs: ProfileInputs,
     result: { curves: ProfileCurves; milliseconds: number },
     timing: GpuTiming | 'cpu',
+    request: FrameRequest,
   ): Promise<DipoleFrame> => {
     curves = result.curves;
     curvesCost = { milliseconds: result.milliseconds, timing };
@@ -268,6 +274,18 @@ export function createView(
     if (mc.key !== key) {
       cancelRun('');
       mc = emptyMonteCarlo(key);
+    }
+    if (mc.batches === null) {
+      // Issue 23: the models first (a millisecond), the Monte Carlo's first run (most of
+      // a second on a CPU WebGPU) in the next stage, so a slider shows its curves at once.
+      if (request.stage === 0)
+        return {
+          ...frameOf(inputs, result.curves),
+          refinement: {
+            label: 'Preview: the three models; the first Monte Carlo run follows',
+            pending: 'frame',
+          },
+        };
       const step = await monteCarloStep(backend, inputs, firstRunPhotons(inputs), mcToken);
       if (step) frameMilliseconds += step.milliseconds;
     }
@@ -284,7 +302,8 @@ export function createView(
         'aria-label',
         'Log–log plot of the diffuse reflectance profile Rd(r) per colour channel: dipole, better dipole, Christensen–Burley and Monte Carlo with error bars',
       );
-      stage.append(plotArea, profileLegend());
+      modelNote.className = 'sb-dp-model-note';
+      stage.append(plotArea, profileLegend(), modelNote);
       plot = new ProfilePlot(plotArea);
 
       const row = document.createElement('div');
@@ -377,19 +396,20 @@ export function createView(
         context.setValue('material', 'manual');
     },
     createRenderer: (gpu) => new DipoleProfileGpu(gpu, disc.element),
-    async renderGpu(renderer, gpu) {
+    refinement: (frame) => frame.refinement,
+    async renderGpu(renderer, gpu, request) {
       syncMaterialControls();
       const inputs = inputsFrom(context.values);
       const result = await renderer.curves(inputs);
       await renderer.drawDisc(inputs);
-      return finishRender({ kind: 'gpu', gpu, renderer }, inputs, result, result.timing);
+      return finishRender({ kind: 'gpu', gpu, renderer }, inputs, result, result.timing, request);
     },
-    async renderCpu() {
+    async renderCpu(request) {
       syncMaterialControls();
       const inputs = inputsFrom(context.values);
       const result = curvesCpu(inputs);
       paintDiscCpu(disc.element, inputs);
-      return finishRender({ kind: 'cpu', reason: '' }, inputs, result, 'cpu');
+      return finishRender({ kind: 'cpu', reason: '' }, inputs, result, 'cpu', request);
     },
     onCpuFallback: () => {
       cancelRun('stopped: the GPU was lost');
@@ -399,6 +419,7 @@ export function createView(
     /** Plot, totals, the capped notice and the error plot from the current curves and Monte Carlo. */
     show({ inputs, curves: shown, monteCarlo }) {
       const channels = estimates();
+      modelNote.textContent = betterDipoleNote(inputs, monteCarlo);
       plot?.update({ curves: shown, monteCarlo: channels?.map((e) => e.profile) ?? null });
       const setTotal = (row: string, channel: number, text: string): void => {
         const cell = totalCells.get(`${row}-${CHANNEL_NAMES[channel]}`);

@@ -9,6 +9,7 @@
 // be cancelled. Without WebGPU the float64 twins do all of it on the CPU.
 import { defineWidget, type Preset, type ReadoutValue } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import type { Refinement } from '../base/refinement.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { findMaterial } from '../../subsurface/materials.ts';
 import { DIPOLE_PROFILE } from './schema.ts';
@@ -44,6 +45,8 @@ export interface DipoleFrame {
   /** How the Monte Carlo was timed (timingLabel), '' before its first run. */
   mcTiming: string;
   monteCarlo: MonteCarloSummary | null;
+  /** A preview (the models before the Monte Carlo's first run); absent at full quality. */
+  refinement?: Refinement;
 }
 
 /** A photon count exactly, with thin spaces between groups of three digits (65 536). */
@@ -107,7 +110,7 @@ export const widget = defineWidget<DipoleFrame>({
       monteCarloRow('dipole-error', 'Dipole − MC (R · G · B)', (summary) =>
         modelError(summary, 'dipole'),
       ),
-      monteCarloRow('better-error', 'Better dipole − MC', (summary) =>
+      monteCarloRow('better-error', 'Better dipole (one source) − MC', (summary) =>
         modelError(summary, 'better'),
       ),
       monteCarloRow('collisions', 'Collisions per photon', (summary) =>
@@ -136,7 +139,7 @@ export const widget = defineWidget<DipoleFrame>({
       _how,
       backend,
     ) =>
-      `${backend.kind === 'cpu' ? 'float64 twins, ' : ''}3 models × 3 channels × ${curves.radii.length} radii in ${formatMilliseconds(curvesMilliseconds)}; Monte Carlo ${count(photons)} photons per channel in ${formatMilliseconds(mcMilliseconds)} (${mcTiming || '—'}), half-space, ${inputs.g > 0 ? `HG g = ${inputs.g}` : 'isotropic scattering'}, η = ${inputs.eta}.`,
+      `${backend.kind === 'cpu' ? 'float64 twins, ' : ''}3 models × 3 channels × ${curves.radii.length} radii in ${formatMilliseconds(curvesMilliseconds)}; ${photons > 0 ? `Monte Carlo ${count(photons)} photons per channel in ${formatMilliseconds(mcMilliseconds)} (${mcTiming || '—'})` : 'the Monte Carlo’s first run follows'}, half-space, ${inputs.g > 0 ? `HG g = ${inputs.g}` : 'isotropic scattering'}, η = ${inputs.eta}.`,
   },
   slides: [
     {

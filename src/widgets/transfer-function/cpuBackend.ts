@@ -2,6 +2,7 @@
 // interface (FrameRenderer): the GPU kernel (gpuBackend.ts, bands read back into
 // the full image) and, without WebGPU, the float64 twin in model.ts at
 // CPU_SIZE² pixels. Also the painting of images into 2D canvases.
+import { TimeSlicer } from '../base/refinement.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import type { Rgb } from '../base/imagePanel.ts';
 import type { VolumeRendererGpu } from './gpuBackend.ts';
@@ -25,8 +26,8 @@ export interface FrameRenderer {
   readonly kind: 'gpu' | 'cpu';
   /** Image size (pixels per side). */
   readonly size: number;
-  /** A blank image of this renderer's size and precision. */
-  blank(): VolumeImage;
+  /** A blank image of `size`² pixels (default: this renderer's full size) and its precision. */
+  blank(size?: number): VolumeImage;
   /** Renders rows [rowStart, rowEnd) into `image` and adds their statistics. */
   renderInto(
     image: VolumeImage,
@@ -38,16 +39,20 @@ export interface FrameRenderer {
   ): Promise<RowsCost>;
 }
 
-/** The float64 twin on the CPU at CPU_SIZE² pixels, timed by the wall clock. */
+/** The float64 twin on the CPU at CPU_SIZE² pixels (or a preview's fewer), timed by the wall clock. */
 export class CpuRenderer implements FrameRenderer {
   readonly kind = 'cpu';
   readonly size = CPU_SIZE;
 
-  blank(): VolumeImage {
-    return emptyImage(this.size, new Float64Array(3 * this.size * this.size));
+  blank(size = this.size): VolumeImage {
+    return emptyImage(size, new Float64Array(3 * size * size));
   }
 
-  renderInto(
+  /**
+   * Row by row, yielding to the page whenever a slice is used up (TimeSlicer), so that no
+   * task is much longer than SLICE_MS; the time is the work's, not the pauses'.
+   */
+  async renderInto(
     image: VolumeImage,
     inputs: FrameInputs,
     stepVoxels: number,
@@ -55,25 +60,27 @@ export class CpuRenderer implements FrameRenderer {
     rowStart: number,
     rowEnd: number,
   ): Promise<RowsCost> {
-    const start = performance.now();
-    renderRowsCpu(image, inputs, stepVoxels, threshold, rowStart, rowEnd);
-    return Promise.resolve({
-      milliseconds: performance.now() - start,
-      how: timingLabel('cpu'),
-      timing: 'cpu',
-    });
+    const slicer = new TimeSlicer();
+    let milliseconds = 0;
+    for (let row = rowStart; row < Math.min(rowEnd, image.size); row++) {
+      const start = performance.now();
+      renderRowsCpu(image, inputs, stepVoxels, threshold, row, row + 1);
+      milliseconds += performance.now() - start;
+      await slicer.pause();
+    }
+    return { milliseconds, how: timingLabel('cpu'), timing: 'cpu' };
   }
 }
 
-/** The GPU kernel at IMAGE_SIZE² pixels; each call is one dispatch, timed on the GPU. */
+/** The GPU kernel at IMAGE_SIZE² pixels (or a preview's fewer); each call is one dispatch, timed on the GPU. */
 export class GpuRenderer implements FrameRenderer {
   readonly kind = 'gpu';
   readonly size = IMAGE_SIZE;
 
   constructor(private readonly gpu: VolumeRendererGpu) {}
 
-  blank(): VolumeImage {
-    return emptyImage(this.size, new Float32Array(3 * this.size * this.size));
+  blank(size = this.size): VolumeImage {
+    return emptyImage(size, new Float32Array(3 * size * size));
   }
 
   async renderInto(
@@ -84,17 +91,18 @@ export class GpuRenderer implements FrameRenderer {
     rowStart: number,
     rowEnd: number,
   ): Promise<RowsCost> {
+    const { size } = image;
     const band = await this.gpu.renderRows({
       inputs,
-      size: this.size,
+      size,
       stepVoxels,
       threshold,
       rowStart,
       rowEnd,
     });
-    const pixels = this.size * this.size;
-    const bandPixels = band.rows * this.size;
-    const offset = rowStart * this.size;
+    const pixels = size * size;
+    const bandPixels = band.rows * size;
+    const offset = rowStart * size;
     for (let c = 0; c < 3; c++)
       image.rgb.set(band.rgb.subarray(c * bandPixels, (c + 1) * bandPixels), c * pixels + offset);
     image.stepsPerPixel.set(band.stepsPerPixel, offset);
@@ -107,15 +115,16 @@ export class GpuRenderer implements FrameRenderer {
   }
 }
 
-/** One whole frame on a renderer: the image and what it cost. */
+/** One whole frame on a renderer at `size`² pixels (default: its full size): the image and its cost. */
 export async function renderFrame(
   renderer: FrameRenderer,
   inputs: FrameInputs,
   stepVoxels: number,
   threshold: number,
+  size = renderer.size,
 ): Promise<{ image: VolumeImage } & RowsCost> {
-  const image = renderer.blank();
-  const cost = await renderer.renderInto(image, inputs, stepVoxels, threshold, 0, renderer.size);
+  const image = renderer.blank(size);
+  const cost = await renderer.renderInto(image, inputs, stepVoxels, threshold, 0, size);
   return { image, ...cost };
 }
 

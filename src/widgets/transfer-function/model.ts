@@ -49,8 +49,12 @@ export const REFERENCE_STEP_VOXELS = 1 / 8;
 export const REFERENCE_EPSILON = 1e-6;
 /** The sweep's samples per voxel 1/Δs (Δs = 4, 2, 1, ½ voxel). */
 export const SWEEP_SAMPLES_PER_VOXEL = [0.25, 0.5, 1, 2] as const;
-/** Rows per dispatch of the reference, so that it shows progress and can be cancelled. */
-export const REFERENCE_BAND_ROWS = 16;
+/**
+ * Rows per dispatch of the reference, so that it shows progress and can be cancelled: a
+ * band is 4/160 of the image at 8× the steps, ≈ ⅕ of a frame, so a reader's input waits
+ * behind at most that much GPU work before its first picture (issue 23; was 16 rows).
+ */
+export const REFERENCE_BAND_ROWS = 4;
 
 export interface ControlPoint {
   hu: number;

@@ -14,6 +14,13 @@ import {
   imagePanel,
   niceScale,
 } from '../base/imagePanel.ts';
+import {
+  CPU_FIRST_PICTURE_MS,
+  GPU_FIRST_PICTURE_MS,
+  Ladder,
+  type FrameRequest,
+  type Refinement,
+} from '../base/refinement.ts';
 import { SweepControls, logLogSlope } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import {
@@ -52,6 +59,7 @@ import {
 } from './model.ts';
 import { histogram, phantomVolume } from './phantom.ts';
 import { CONTROL_POINTS } from './schema.ts';
+import { terminationSaving, type TerminationTimes } from './saving.ts';
 import { formatCount, type TransferFrame } from './widget.ts';
 
 /** Degrees the camera turns per CSS pixel of drag, and per arrow key press. */
@@ -69,13 +77,39 @@ type Renderer = Promise<GpuRenderer>;
 interface ReferenceJob {
   key: string;
   cancelled: boolean;
+  /** Stopped by the reader's input rather than cancelled: its bands are kept to resume. */
+  paused?: boolean;
   promise: Promise<VolumeImage | null>;
+}
+
+/** A reference stopped by an input: the bands done, to go on from if its scene is shown again. */
+interface PartialReference {
+  key: string;
+  image: VolumeImage;
+  band: number;
+  milliseconds: number;
 }
 
 /** A rendered frame with what the reference and the saving need: its scene key and renderer. */
 interface Frame extends TransferFrame {
   key: string;
   renderer: FrameRenderer;
+  /** Which stage of the progressive refinement it is (a preview has fewer rays). */
+  refinement: Refinement;
+}
+
+/**
+ * Image sides of the progressive refinement (issue 23): a quarter, a half and all of the
+ * full side, one sixteenth, a quarter and all of the rays. The ladder starts on the
+ * largest that its measured cost per ray fits into the first-picture budget.
+ */
+function sizeLadder(full: number, firstBudgetMs: number): Ladder<number> {
+  const rung = (side: number) => ({
+    value: side,
+    work: (side * side) / (full * full),
+    label: `${side}×${side} rays`,
+  });
+  return new Ladder([rung(full / 4), rung(full / 2), rung(full)], firstBudgetMs);
 }
 
 export function createView(context: ViewContext<Renderer>): WidgetView<TransferFrame, Renderer> {
@@ -101,9 +135,14 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
   let reference: { key: string; image: VolumeImage } | null = null;
   let referenceJob: ReferenceJob | null = null;
   let referenceTimer: ReturnType<typeof setTimeout> | null = null;
+  let partialReference: PartialReference | null = null;
   /** Time and steps with the other termination setting, per scene, step and ε. */
-  const otherMode = new Map<string, { current: number; other: number; otherSteps: number }>();
+  const otherMode = new Map<string, TerminationTimes>();
   let otherModeRunning = '';
+  const ladders = {
+    gpu: sizeLadder(IMAGE_SIZE, GPU_FIRST_PICTURE_MS),
+    cpu: sizeLadder(CPU_SIZE, CPU_FIRST_PICTURE_MS),
+  };
 
   const set = (key: string, text: string, state?: 'ok' | 'bad'): void =>
     context.setReadout(key, text, state);
@@ -248,58 +287,49 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
     setReferenceStatus(referenceStatus.textContent ?? '', 1);
   };
 
-  const showSaving = (
-    frame: Frame,
-    measured: { current: number; other: number; otherSteps: number },
-  ): void => {
-    const on = frame.inputs.termination
-      ? { ms: measured.current, steps: frame.image.steps }
-      : { ms: measured.other, steps: measured.otherSteps };
-    const off = frame.inputs.termination
-      ? { ms: measured.other, steps: measured.otherSteps }
-      : { ms: measured.current, steps: frame.image.steps };
-    const stepSaving = off.steps > 0 ? 1 - on.steps / off.steps : 0;
-    const timeSaving = off.ms > 0 ? 1 - on.ms / off.ms : 0;
-    set(
-      'saving',
-      `${formatNumber(100 * stepSaving, 3)}% of the steps; ${formatMilliseconds(on.ms)} with, ${formatMilliseconds(off.ms)} without (${formatNumber(100 * timeSaving, 2)}% of the time, best of 2 frames each)`,
-    );
-  };
+  /** The key of a full-quality frame's termination timing: its scene, step and ε. */
+  const savingKey = (frame: Frame): string =>
+    `${frame.key}|${frame.inputs.step}|${frame.inputs.epsilon}`;
+
+  /** The saving row of a full-quality frame (saving.ts), with its timing if measured. */
+  const showSaving = (frame: Frame): void =>
+    set('saving', terminationSaving(frame, otherMode.get(savingKey(frame))));
 
   /**
-   * Measures the frame's cost with and without early termination, for the saving
-   * readout: the other setting twice and the current one once more, alternating, and
-   * the faster of each pair. On a CPU shared with other work (SwiftShader) single
-   * timings vary by tens of percent; the best of two is steadier.
+   * Measures a full-quality frame's cost with and without early termination, for the
+   * saving readout: the other setting twice and the current one once more, alternating.
+   * On a CPU shared with other work (SwiftShader) single timings vary by tens of percent,
+   * so the readout compares the best of each pair and names the spread. Stops (and
+   * caches nothing) when the inputs change: a new frame measures again.
    */
   const measureOtherMode = (frame: Frame): void => {
     const { inputs } = frame;
-    const key = `${frame.key}|${inputs.step}|${inputs.epsilon}`;
-    const measured = otherMode.get(key);
-    if (measured) {
-      showSaving(frame, measured);
-      return;
-    }
-    set('saving', 'measuring…');
-    if (otherModeRunning === key) return;
+    const key = savingKey(frame);
+    showSaving(frame);
+    if (otherMode.has(key) || otherModeRunning === key) return;
     otherModeRunning = key;
+    const signal = context.inputSignal;
     const otherInputs = { ...inputs, termination: !inputs.termination };
-    const run = (which: FrameInputs) =>
-      renderFrame(frame.renderer, which, which.step, thresholdOf(which));
+    const run = async (which: FrameInputs) => {
+      signal.throwIfAborted();
+      return renderFrame(frame.renderer, which, which.step, thresholdOf(which));
+    };
     void (async () => {
       const first = await run(otherInputs);
       const again = await run(inputs);
       const second = await run(otherInputs);
-      const result = {
-        current: Math.min(frame.milliseconds, again.milliseconds),
-        other: Math.min(first.milliseconds, second.milliseconds),
+      const result: TerminationTimes = {
+        current: [frame.milliseconds, again.milliseconds],
+        other: [first.milliseconds, second.milliseconds],
         otherSteps: first.image.steps,
       };
       if (otherMode.size > 64) otherMode.clear();
       otherMode.set(key, result);
-      if (lastFrame === frame) showSaving(frame, result);
+      if (lastFrame === frame) showSaving(frame);
     })()
-      .catch(() => set('saving', 'not measured (the render failed)', 'bad'))
+      .catch(() => {
+        if (!signal.aborted) set('saving', 'not measured (the render failed)', 'bad');
+      })
       .finally(() => {
         if (otherModeRunning === key) otherModeRunning = '';
       });
@@ -307,13 +337,21 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
 
   const computeReference = async (frame: Frame, job: ReferenceJob): Promise<VolumeImage | null> => {
     const { renderer, inputs } = frame;
-    const image = renderer.blank();
-    const bandRows = renderer.kind === 'gpu' ? REFERENCE_BAND_ROWS : 4;
+    const resume =
+      partialReference?.key === job.key && partialReference.image.size === renderer.size
+        ? partialReference
+        : null;
+    partialReference = null;
+    const image = resume?.image ?? renderer.blank();
+    const bandRows = REFERENCE_BAND_ROWS;
     const bands = Math.ceil(renderer.size / bandRows);
     referenceButton.textContent = 'Cancel reference';
-    let milliseconds = 0;
-    for (let band = 0; band < bands; band++) {
-      if (job.cancelled) return null;
+    let milliseconds = resume?.milliseconds ?? 0;
+    for (let band = resume?.band ?? 0; band < bands; band++) {
+      if (job.cancelled) {
+        if (job.paused) partialReference = { key: job.key, image, band, milliseconds };
+        return null;
+      }
       setReferenceStatus(`Reference: Δs = ⅛ voxel, band ${band + 1} of ${bands}…`, band / bands);
       set('rmse', `computing the reference… ${Math.round((100 * band) / bands)}%`);
       const cost = await renderer.renderInto(
@@ -336,10 +374,7 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       1,
     );
     const latest = lastFrame;
-    if (latest?.key === job.key) {
-      showError(latest, image);
-      measureOtherMode(latest);
-    }
+    if (latest?.key === job.key) showError(latest, image);
     return image;
   };
 
@@ -360,7 +395,6 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
   const analyse = (frame: Frame): void => {
     if (reference?.key === frame.key) {
       showError(frame, reference.image);
-      measureOtherMode(frame);
       return;
     }
     showError(frame, null);
@@ -370,7 +404,21 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
     setReferenceStatus('Reference: waiting for the view to settle…', 0);
     referenceTimer = setTimeout(() => {
       referenceTimer = null;
-      if (lastFrame?.key === frame.key) void ensureReference(frame);
+      if (lastFrame?.key !== frame.key) return;
+      void ensureReference(frame);
+      // The next input's first picture must not queue behind the reference's bands: it
+      // pauses (keeping its bands) and goes on once the new picture has settled.
+      const job = referenceJob;
+      context.inputSignal.addEventListener(
+        'abort',
+        () => {
+          if (!job || referenceJob !== job || job.cancelled) return;
+          job.paused = true;
+          job.cancelled = true;
+          referenceJob = null;
+        },
+        { once: true },
+      );
     }, REFERENCE_DELAY_MS);
   };
 
@@ -397,14 +445,29 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
     return inputs;
   };
 
-  const frameOn = async (renderer: FrameRenderer, inputs: FrameInputs): Promise<Frame> => {
+  /**
+   * One stage of the picture: a preview with fewer rays first (the ladder's rung), then
+   * the full image. Only a full-quality frame becomes `lastFrame`, which the reference,
+   * the error image and the termination saving compare against.
+   */
+  const frameOn = async (
+    renderer: FrameRenderer,
+    inputs: FrameInputs,
+    request: FrameRequest,
+  ): Promise<Frame> => {
+    const ladder = ladders[renderer.kind];
+    const choice = ladder.pick(request);
+    const start = performance.now();
     const { image, milliseconds, how, timing } = await renderFrame(
       renderer,
       inputs,
       inputs.step,
       thresholdOf(inputs),
+      choice.rung.value,
     );
-    lastFrame = {
+    // The latency a reader sees (dispatch, read-back and all), not only the GPU pass.
+    ladder.record(choice.index, performance.now() - start);
+    const frame: Frame = {
       inputs,
       image,
       milliseconds,
@@ -414,8 +477,10 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       voxel: VOXEL,
       key: `${renderer.kind}|${sceneKey(inputs)}`,
       renderer,
+      refinement: ladder.refinement(choice),
     };
-    return lastFrame;
+    if (choice.final) lastFrame = frame;
+    return frame;
   };
 
   const frameRenderer = async (backend: Backend<Renderer>): Promise<FrameRenderer> =>
@@ -441,6 +506,7 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
             timing: 'cpu',
             biasBound: 0,
             voxel: VOXEL,
+            refinement: { label: 'sweep', pending: null },
           });
           if (!referenceImage) throw new Error('the reference was cancelled');
           const frame = await renderFrame(
@@ -563,14 +629,15 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       VolumeRendererGpu.create(gpu.device, STATIC_KERNELS, phantomGrid()).then(
         (renderer) => new GpuRenderer(renderer),
       ),
-    async renderGpu(renderer) {
+    async renderGpu(renderer, _gpu, request) {
       const inputs = prepare();
-      return frameOn(await renderer, inputs);
+      return frameOn(await renderer, inputs, request);
     },
-    renderCpu() {
+    renderCpu(request) {
       const inputs = prepare();
-      return frameOn(new CpuRenderer(), inputs);
+      return frameOn(new CpuRenderer(), inputs, request);
     },
+    refinement: (frame) => (frame as Frame).refinement,
     onCpuFallback: () => {
       sweep?.cancel('stopped: the GPU was lost');
       dropReference();
@@ -579,7 +646,9 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       sweep?.cancel('stopped');
       dropReference();
     },
-    show({ image, inputs }) {
+    show(shown) {
+      const { image, inputs } = shown;
+      const frame = shown as Frame;
       const pixels = image.size * image.size;
       paintImage(volumeCanvas, image.size, (i) => pixelColour(image.rgb, pixels, i));
       if (image.cappedRays > 0) {
@@ -595,7 +664,15 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
         'aria-label',
         `Volume rendering of the CT head phantom, azimuth ${inputs.azimuth}°, elevation ${inputs.elevation}°, step ${formatNumber(inputs.step, 4)} voxel. Drag, or use the arrow keys, to orbit the camera.`,
       );
-      if (lastFrame) analyse(lastFrame);
+      if (frame.refinement.pending !== null) {
+        // A preview: the error against the reference and the saving are for the full image.
+        if (inputs.panel === 'steps') showSteps(image);
+        else paintImage(errorCanvas, image.size, () => [4, 6, 16]);
+        for (const key of ['rmse', 'max-error', 'saving']) set(key, 'after the preview…');
+        return;
+      }
+      analyse(frame);
+      measureOtherMode(frame);
     },
   };
 }

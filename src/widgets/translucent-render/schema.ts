@@ -129,14 +129,16 @@ export const TRANSLUCENT_RENDER: WidgetEntry = {
       kind: 'choice',
       name: 'overlay',
       label: 'Show on the BSSRDF picture',
+      // The picture comes first: the cut of a pixel is hundreds of circles that cover the
+      // sphere (issue 17), so by default only the selected pixel's small marker is drawn.
       choices: [
+        { value: 'none', label: 'Only the selected pixel' },
         { value: 'cut', label: 'The octree cut of the selected pixel' },
         { value: 'samples', label: 'The irradiance samples, coloured by E' },
-        { value: 'none', label: 'Nothing' },
       ],
-      default: 'cut',
+      default: 'none',
       description:
-        'Draw the nodes the selected pixel’s gather used (circles of their area, at their mean position), or the irradiance samples of pass 1.',
+        'Draw only the selected pixel (its nodes visited are in the readouts), the nodes its gather used (circles of their area, at their mean position), or the irradiance samples of pass 1.',
     },
     {
       kind: 'number',

@@ -25,6 +25,13 @@ import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { SweepControls, type SweepPoint } from '../base/sweep.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
+import {
+  CPU_FIRST_PICTURE_MS,
+  GPU_FIRST_PICTURE_MS,
+  Ladder,
+  type FrameRequest,
+  type RungChoice,
+} from '../base/refinement.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import {
   epsilonOf,
@@ -72,6 +79,28 @@ interface ReferenceState {
   timing: string;
 }
 
+/**
+ * The image sides of the progressive refinement (issue 23): a quarter, a half and all of
+ * the chosen side (at least 8 pixels), one sixteenth, a quarter and all of the pixels.
+ * Rebuilt when the side changes; the ladder starts on the largest rung its measured cost
+ * per pixel fits into the first-picture budget.
+ */
+function sizeLadder(full: number, firstBudgetMs: number): Ladder<number> {
+  const sides = [
+    ...new Set([Math.max(8, Math.round(full / 4)), Math.max(8, Math.round(full / 2)), full]),
+  ]
+    .filter((side) => side <= full)
+    .sort((a, b) => a - b);
+  return new Ladder(
+    sides.map((side) => ({
+      value: side,
+      work: (side * side) / (full * full),
+      label: `${side}×${side} pixels`,
+    })),
+    firstBudgetMs,
+  );
+}
+
 interface Pictures {
   diffuse: Float32Array;
   gather: { image: Float32Array; visited: Float32Array; exact: Float32Array | null };
@@ -110,6 +139,15 @@ export function createView(
   let exact: { key: string; image: Float32Array; milliseconds: number } | null = null;
   /** The selected pixel (column, row) of the BSSRDF picture. */
   let selected: [number, number] | null = null;
+  /** Per backend: the ladder of image sides and the full side it was built for. */
+  const ladders: Partial<Record<'gpu' | 'cpu', { full: number; ladder: Ladder<number> }>> = {};
+  const ladderFor = (kind: 'gpu' | 'cpu', full: number): Ladder<number> => {
+    const known = ladders[kind];
+    if (known?.full === full) return known.ladder;
+    const ladder = sizeLadder(full, kind === 'gpu' ? GPU_FIRST_PICTURE_MS : CPU_FIRST_PICTURE_MS);
+    ladders[kind] = { full, ladder };
+    return ladder;
+  };
 
   const octreeFor = (forScene: TranslucentScene, count: number): OctreeState => {
     const key = [
@@ -363,6 +401,18 @@ export function createView(
     drawOverlay();
   };
 
+  /** Nodes visited per pixel on the sphere, mean. */
+  const meanVisitedOf = (shown: TranslucentScene, drawn: Pictures): number => {
+    let visitedSum = 0;
+    let visitedCount = 0;
+    interiorMask(shown).forEach((inside, p) => {
+      if (!inside) return;
+      visitedSum += drawn.gather.visited[p]!;
+      visitedCount += 1;
+    });
+    return visitedSum / Math.max(visitedCount, 1);
+  };
+
   /**
    * What both backends share after their pictures: paint them, start or extend the
    * reference on the GPU (or say it needs WebGPU), redraw the reference and the overlay.
@@ -379,13 +429,6 @@ export function createView(
     paintImage(canvases[0].element, drawn.diffuse, shown.size, exposure);
     paintImage(canvases[1].element, drawn.gather.image, shown.size, exposure);
     const mask = interiorMask(shown);
-    let visitedSum = 0;
-    let visitedCount = 0;
-    mask.forEach((inside, p) => {
-      if (!inside) return;
-      visitedSum += drawn.gather.visited[p]!;
-      visitedCount += 1;
-    });
     const exactImage = drawn.gather.exact;
     const result: TranslucentFrame = {
       ...frame,
@@ -395,7 +438,7 @@ export function createView(
         nodes: state.octree.nodes.length,
         buildMs: state.buildMs,
       },
-      meanVisited: visitedSum / Math.max(visitedCount, 1),
+      meanVisited: meanVisitedOf(shown, drawn),
       exact:
         exactImage && exactMs !== null
           ? {
@@ -494,13 +537,54 @@ export function createView(
     });
   };
 
-  /** The scene of this frame and its octree (the CPU draws a smaller image). */
-  const prepare = (onCpu: boolean): { shown: TranslucentScene; state: OctreeState } => {
+  /**
+   * The scene of this frame and its octree (the CPU draws a smaller image), at the side of
+   * this stage's rung. Only a full-quality frame becomes `scene`, which the reference, the
+   * overlay and the selected pixel are measured in.
+   */
+  const prepare = (
+    onCpu: boolean,
+    request: FrameRequest,
+  ): {
+    shown: TranslucentScene;
+    state: OctreeState;
+    ladder: Ladder<number>;
+    choice: RungChoice<number>;
+  } => {
     const shown = sceneFromValues(context.values);
     cpuOnly = onCpu;
     if (onCpu) shown.size = Math.min(shown.size, CPU_SIZE);
-    scene = shown;
-    return { shown, state: octreeFor(shown, sampleCountOf(context.values)) };
+    const ladder = ladderFor(onCpu ? 'cpu' : 'gpu', shown.size);
+    const choice = ladder.pick(request);
+    shown.size = choice.rung.value;
+    if (choice.final) scene = shown;
+    return { shown, state: octreeFor(shown, sampleCountOf(context.values)), ladder, choice };
+  };
+
+  /** A preview's pictures: painted (pixelated), nothing else touched; the readouts say it is one. */
+  const finishPreview = (
+    shown: TranslucentScene,
+    state: OctreeState,
+    drawn: Pictures,
+    frame: Omit<TranslucentFrame, 'size' | 'octree' | 'meanVisited' | 'exact'>,
+    refinement: TranslucentFrame['refinement'],
+  ): TranslucentFrame => {
+    const exposure = Number(context.values['exposure']);
+    paintImage(canvases[0].element, drawn.diffuse, shown.size, exposure);
+    paintImage(canvases[1].element, drawn.gather.image, shown.size, exposure);
+    for (const key of ['diffuse-error', 'gather-error']) set(key, 'after the preview…');
+    return {
+      ...frame,
+      size: shown.size,
+      octree: {
+        samples: state.octree.samples.count,
+        nodes: state.octree.nodes.length,
+        buildMs: state.buildMs,
+      },
+      meanVisited: meanVisitedOf(shown, drawn),
+      exact: null,
+      refinement,
+    };
   };
 
   return {
@@ -588,11 +672,26 @@ export function createView(
       );
     },
     createRenderer: (gpu: GpuContext) => new TranslucentKernels(gpu.device, STATIC_KERNELS),
-    async renderGpu(renderer) {
-      const { shown, state } = prepare(false);
+    refinement: (frame) => frame.refinement,
+    async renderGpu(renderer, _gpu, request) {
+      const { shown, state, ladder, choice } = prepare(false, request);
       const epsilon = epsilonOf(context.values);
+      const start = performance.now();
       const diffuse = await renderer.diffuse(shown);
       const gather = await renderer.gather(shown, state.octree, epsilon);
+      ladder.record(choice.index, performance.now() - start);
+      if (!choice.final)
+        return finishPreview(
+          shown,
+          state,
+          { diffuse: diffuse.image, gather: { ...gather, exact: null } },
+          {
+            epsilon,
+            diffuse: { milliseconds: diffuse.milliseconds, timing: diffuse.timing as GpuTiming },
+            gather: { milliseconds: gather.milliseconds, timing: gather.timing as GpuTiming },
+          },
+          ladder.refinement(choice),
+        );
       // The direct sum does not depend on ε: computed once per octree and image size.
       const exactKey = `${state.key}|${shown.size}`;
       if (exact?.key !== exactKey)
@@ -612,14 +711,28 @@ export function createView(
         exact.milliseconds,
       );
     },
-    renderCpu() {
-      const { shown, state } = prepare(true);
+    renderCpu(request) {
+      const { shown, state, ladder, choice } = prepare(true, request);
       const epsilon = epsilonOf(context.values);
       const start = performance.now();
       const diffuse = renderDiffuseCpu(shown);
       const middle = performance.now();
       const gather = renderGatherCpu(shown, state.octree, epsilon);
       const end = performance.now();
+      ladder.record(choice.index, end - start);
+      const times = {
+        epsilon,
+        diffuse: { milliseconds: middle - start, timing: 'cpu' as const },
+        gather: { milliseconds: end - middle, timing: 'cpu' as const },
+      };
+      if (!choice.final)
+        return finishPreview(
+          shown,
+          state,
+          { diffuse, gather: { image: gather.image, visited: gather.visited, exact: null } },
+          times,
+          ladder.refinement(choice),
+        );
       return finishFrame(
         shown,
         state,

@@ -14,6 +14,7 @@
 // pixel's rows are the view's (they change as the path tracer runs, between frames).
 import { defineWidget, type Preset } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import type { Refinement } from '../base/refinement.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { findMaterial } from '../../subsurface/materials.ts';
 import { TRANSLUCENT_RENDER } from './schema.ts';
@@ -33,6 +34,8 @@ export interface TranslucentFrame {
   exact: { milliseconds: number; relativeRmse: number } | null;
   /** Nodes visited per pixel on the sphere, mean. */
   meanVisited: number;
+  /** A preview with fewer pixels (issue 23); absent at full quality. */
+  refinement?: Refinement;
 }
 
 function preset(name: string, extra: Record<string, number> = {}): Preset {
