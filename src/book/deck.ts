@@ -64,21 +64,32 @@ export function setupDeck(): void {
     return box && content instanceof HTMLElement ? [content, box] : null;
   };
 
+  // The sizes the last fit left, so that the ResizeObserver's report of the fit's own
+  // change does not start another (a fit lays a heavy widget out a dozen times).
+  let fittedSizes = '';
+  const sizesOf = (figure: [HTMLElement, HTMLElement]): string =>
+    figure.map((element) => `${element.offsetWidth}×${element.offsetHeight}`).join(' ');
   const fit = (): void => {
     const slide = slides[index];
     const figure = figureOf(slide);
     if (!slide || !figure) return;
     if (fitted.matches) {
+      const start = performance.now();
       const result = fitToBox(...figure);
-      // Read by the deck's end-to-end test and handy when tuning a slide.
+      // Read by the deck's end-to-end test, and handy when tuning a slide.
       slide.dataset['fit'] =
-        `${result.fits ? 'fits' : 'overflows'} zoom=${result.zoom} stage=${result.stage} width=${result.width}`;
+        `${result.fits ? 'fits' : 'overflows'} zoom=${result.zoom} stage=${result.stage} ` +
+        `width=${result.width} in ${Math.round(performance.now() - start)} ms`;
     } else unfit(figure[0]);
+    fittedSizes = sizesOf(figure);
   };
   let fitFrame = 0;
   const scheduleFit = (): void => {
     cancelAnimationFrame(fitFrame);
-    fitFrame = requestAnimationFrame(fit);
+    fitFrame = requestAnimationFrame(() => {
+      const figure = figureOf(slides[index]);
+      if (figure && sizesOf(figure) !== fittedSizes) fit();
+    });
   };
   // Refit when the window changes or the figure's contents do (a widget being defined,
   // a notice, readouts filled in); a fit that changes nothing reports no new size.
