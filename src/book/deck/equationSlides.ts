@@ -188,7 +188,7 @@ R_d(r) = \frac{\alpha'}{4\pi}\Biggl[ & \underbrace{\frac{z_r\,(1 + \sigma_{tr}d_
 
 /**
  * The TeX of an equation with its layout taken out: line breaks and alignment
- * (aligned, gathered, `&`, `\\`), spacing commands, bracket sizes (`\left`, `\Big`…),
+ * (aligned, gathered, `&`, `\\` with or without `[0.4em]`), spacing commands, bracket sizes (`\left`, `\Big`…),
  * `{}` and \underbrace annotations. Two forms of one equation that differ only in how
  * they are laid out give the same string.
  */
@@ -209,7 +209,7 @@ export function equationLayoutFree(tex: string): string {
     .replace(/\\(?:begin|end)\{(?:aligned|gathered|split)\}/g, '')
     .replace(/\\(?:left|right)\s*\./g, '')
     .replace(/\\(?:left|right|[Bb]igg?[lrm]?)(?![A-Za-z])/g, '')
-    .replace(/\\\\|&/g, '')
+    .replace(/\\\\(?:\[[^\]]*\])?|&/g, '')
     .replace(/\\(?:[,;:!]|q?quad(?![A-Za-z]))/g, '')
     .replace(/\{\}/g, '')
     .replace(/\s+/g, '');
