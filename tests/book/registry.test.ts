@@ -66,7 +66,11 @@ describe('widget registry', () => {
     // Chapter 3 shows the phase function before the sky, chapter 10 the path tracer
     // before photon mapping, chapter 11 the dipole before the translucent sphere.
     const order = (chapter: string): string[] => [
-      ...new Set(DECK.filter((slide) => slide.chapter.startsWith(chapter)).map((s) => s.widget)),
+      ...new Set(
+        DECK.filter((slide) => slide.chapter.startsWith(chapter)).flatMap((s) =>
+          s.kind === 'widget' ? [s.widget] : [],
+        ),
+      ),
     ];
     expect(order('03')).toEqual(['hg-lobe', 'rayleigh-sky']);
     expect(order('10')).toEqual(['volume-path-tracer', 'photon-map']);

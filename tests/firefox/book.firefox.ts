@@ -80,10 +80,13 @@ function builtPages(): PageSpec[] {
   });
 }
 
-/** The deck's slides, each with the id of its widget. */
-function deckSlides(): string[] {
+/** The deck's widget slides: each widget's id and its slide number (equation slides lie between). */
+function deckSlides(): { id: string; slide: number }[] {
   const html = readFileSync(join(DIST, 'deck.html'), 'utf8');
-  return [...html.matchAll(/<sb-[a-z-]+ id="(slide-\d+-widget)"/g)].map((m) => m[1] ?? '');
+  return [...html.matchAll(/<sb-[a-z-]+ id="(slide-(\d+)-widget)"/g)].map((m) => ({
+    id: m[1] ?? '',
+    slide: Number(m[2]),
+  }));
 }
 
 let server: ChildProcess | null = null;
@@ -310,30 +313,38 @@ describe('deck.html', () => {
   it('loads on its first slide', async () => {
     assert.ok(slides.length >= 2, 'the deck has slides');
     current = await open('/deck.html');
-    const shown = await current.page.$eval('.deck-current', (el) => el.textContent);
+    const shown = await current.page.$eval('.deck-jump', (el) => (el as HTMLInputElement).value);
     assert.equal(shown, '1');
   });
 
-  for (const [index, id] of slides.entries()) {
+  for (const { id, slide } of slides) {
     it(
-      `slide ${index + 1}: → reaches it, and its widget draws on WebGPU`,
+      `slide ${slide}: → reaches it, and its widget draws on WebGPU`,
       {
         timeout: RENDER_TIMEOUT + 30_000,
       },
       async (t) => {
         assert.ok(current, 'the deck loaded');
         const { page } = current;
-        // Each test moves on from the slide before, so one failure does not stall the rest.
-        if (index > 0) await page.keyboard.press('ArrowRight');
+        // Each test moves on from the slide before (past the equation slides between
+        // widget slides), so one failure does not stall the rest.
+        for (let presses = 0; presses < 10; presses++) {
+          const shown = await page.$eval('.deck-jump', (el) =>
+            Number((el as HTMLInputElement).value),
+          );
+          if (shown >= slide) break;
+          await page.keyboard.press('ArrowRight');
+        }
         await page.waitForFunction(
-          (n: number) => document.querySelector('.deck-current')?.textContent === String(n),
+          (n: number) =>
+            document.querySelector<HTMLInputElement>('.deck-jump')?.value === String(n),
           { timeout: 10_000 },
-          index + 1,
+          slide,
         );
-        assert.ok(page.url().includes(`slide=${index + 1}`), 'each slide is a deep link');
+        assert.ok(page.url().includes(`slide=${slide}`), 'each slide is a deep link');
         const handle = await page.$(`#${id}`);
-        assert.ok(handle, `slide ${index + 1} holds #${id}`);
-        await expectDrawsOnWebGpu(t, page, handle, `#${id}`, `deck-slide-${index + 1}.png`);
+        assert.ok(handle, `slide ${slide} holds #${id}`);
+        await expectDrawsOnWebGpu(t, page, handle, `#${id}`, `deck-slide-${slide}.png`);
       },
     );
   }

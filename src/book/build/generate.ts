@@ -16,14 +16,13 @@ import {
   chapterLink,
   chapterPath,
   renderArticlePage,
-  renderDeckPage,
   renderHomePage,
   SITE_TITLE,
   type PageLink,
 } from './pages.ts';
 import { APPENDIX_FILE, APPENDIX_SUMMARY, APPENDIX_TITLE, renderAppendix } from './appendix.ts';
 import { loadShaderDocs } from './shaderDocs.ts';
-import { DECK, validateDeck } from './deck.ts';
+import { DECK, renderDeckPage, validateDeck } from './deck.ts';
 import { hostStyleSheet } from '../../widgets/base/definition.ts';
 import { WIDGET_DEFINITIONS } from '../../widgets/catalog.ts';
 import { markRoot, relativizeLinks } from './links.ts';
@@ -158,8 +157,14 @@ export function buildBook(root: string): Book {
   validateDeck(DECK);
   pages.push({
     file: 'deck.html',
-    html: renderDeckPage(DECK, new Map(chapters.map((chapter) => [chapter.slug, chapter.title]))),
-    widgets: [...new Set(DECK.map((slide) => slide.widget))],
+    html: renderDeckPage(DECK, {
+      chapterTitles: new Map(chapters.map((chapter) => [chapter.slug, chapter.title])),
+      equations,
+      sections: new Map(
+        [...rendered].map(([slug, result]) => [slug, new Set(result.toc.map((entry) => entry.id))]),
+      ),
+    }),
+    widgets: [...new Set(DECK.flatMap((slide) => (slide.kind === 'widget' ? [slide.widget] : [])))],
   });
   // One embed page per catalog widget (embeds.ts), then the appendix that lists them.
   const embeds = planEmbeds(

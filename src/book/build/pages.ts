@@ -4,7 +4,6 @@
 // checking and the theme switch.
 import type { ChapterSource } from './chapters.ts';
 import type { TocEntry } from './markdown.ts';
-import type { DeckSlide } from './deck.ts';
 
 export const SITE_TITLE = 'Scatterbook';
 export const SITE_SUBTITLE = 'Light in participating media — an interactive textbook';
@@ -34,7 +33,7 @@ const PARSING_SCRIPT =
   'document.addEventListener("DOMContentLoaded",function(){' +
   'document.documentElement.classList.remove("sb-parsing")})</script>';
 
-function shell(title: string, description: string, body: string, htmlClass = ''): string {
+export function shell(title: string, description: string, body: string, htmlClass = ''): string {
   return `<!doctype html>
 <html lang="en"${htmlClass ? ` class="${htmlClass}"` : ''}>
 <head>
@@ -159,47 +158,4 @@ ${page.html}
 </main>
 </div>`;
   return shell(`${page.title} — ${SITE_TITLE}`, page.summary, body);
-}
-
-export const DECK_PATH = '/deck.html';
-
-function escapeAttribute(text: string): string {
-  return text.replace(/&/g, '&amp;').replace(/"/g, '&quot;');
-}
-
-/** The demo deck: one full-screen slide per entry; src/book/deck.ts moves between them. */
-export function renderDeckPage(
-  slides: readonly DeckSlide[],
-  chapterTitles: ReadonlyMap<string, string>,
-): string {
-  const sections = slides
-    .map((slide, index) => {
-      const number = index + 1;
-      const attributes = Object.entries(slide.attributes)
-        .map(([name, value]) => ` ${name}="${escapeAttribute(value)}"`)
-        .join('');
-      const chapter = chapterTitles.get(slide.chapter) ?? slide.chapter;
-      return `<section class="deck-slide" id="slide-${number}" aria-labelledby="slide-${number}-title"${index === 0 ? '' : ' hidden'}>
-<h2 class="deck-title" id="slide-${number}-title"><span class="deck-number">${number}</span> ${escapeHtml(slide.title)}</h2>
-<sb-${slide.widget} id="slide-${number}-widget"${attributes}><p class="widget-fallback">This slide's figure needs JavaScript.</p></sb-${slide.widget}>
-<p class="deck-caption">${escapeHtml(slide.caption)} <a href="/chapters/${slide.chapter}.html">Read: ${escapeHtml(chapter)}</a></p>
-</section>`;
-    })
-    .join('\n');
-  const body = `<main id="content" class="deck" data-slides="${slides.length}">
-<h1 class="sr-only">Lecture demo deck</h1>
-${sections}
-<nav class="deck-nav" aria-label="Slides">
-<button type="button" class="button deck-previous" aria-label="Previous slide">← Previous</button>
-<p class="deck-position" aria-live="polite">Slide <span class="deck-current">1</span> of ${slides.length}</p>
-<button type="button" class="button deck-next" aria-label="Next slide">Next →</button>
-</nav>
-<p class="deck-help">Arrow keys, Page Up/Down or Space move between slides; inside a figure, F presents it and 1–9 recall presets.</p>
-</main>`;
-  return shell(
-    `Lecture demo deck — ${SITE_TITLE}`,
-    'Every widget in lecture order as full-screen slides.',
-    body,
-    'deck-page',
-  );
 }

@@ -1,0 +1,99 @@
+// Fits a slide's figure into the room the slide layout leaves it (deck CSS: a grid
+// whose figure row takes what the title, caption and controls do not). A widget's
+// height has two kinds of parts: canvases, whose height follows their width (an
+// aspect ratio), and text (controls, readouts), whose height grows as its column
+// narrows. No single knob fits both, so the fit turns three:
+//   stage  the stage column's share of the widget (--deck-stage, in fr beside the
+//          controls' 0.75fr and the readouts' 1.1fr): a narrower stage has smaller
+//          canvases and wider text columns;
+//   zoom   CSS `zoom` on the widget, which scales text and canvases alike and, unlike
+//          a transform, lays the figure out again (canvases, pointer coordinates and
+//          ResizeObservers see real sizes); 1 is preferred, text stays readable ≥ 0.6;
+//   width  the widget's width (centred), for a widget whose own layout puts the
+//          stage above everything else (its canvases shrink with it).
+// Each probe is one synchronous layout of one figure (the browser paints only the
+// last), and a heavy widget's layout is not free, so the search is short: the stage
+// share that leaves the figure shortest at full size, then the largest zoom for it
+// by bisection, then narrower widths only if that is not enough.
+
+export const STAGE_SHARES = ['1.3fr', '1.1fr', '0.9fr', '0.75fr', '0.6fr'] as const;
+export const WIDTHS = [0.85, 0.7, 0.55] as const;
+export const MIN_ZOOM = 0.6;
+
+export interface Fit {
+  zoom: number;
+  stage: string;
+  width: number;
+  fits: boolean;
+}
+
+type Layout = Omit<Fit, 'fits'>;
+
+function apply(content: HTMLElement, layout: Layout): void {
+  content.style.zoom = layout.zoom === 1 ? '' : String(layout.zoom);
+  content.style.setProperty('--deck-stage', layout.stage);
+  content.style.maxWidth = layout.width === 1 ? '' : `${layout.width * 100}%`;
+}
+
+/** How far `content` overflows `box` (≤ 0: it fits), in px, after laying it out so. */
+function overflow(content: HTMLElement, box: HTMLElement, layout: Layout): number {
+  apply(content, layout);
+  const available = box.getBoundingClientRect();
+  const used = content.getBoundingClientRect();
+  const sideways = Math.max(0, content.scrollWidth - content.clientWidth - 1);
+  return (
+    Math.max(used.height - available.height - 0.5, used.width - available.width - 0.5) + sideways
+  );
+}
+
+/** The largest zoom in [MIN_ZOOM, 1] at which the layout fits, or null. */
+function largestZoom(content: HTMLElement, box: HTMLElement, layout: Layout): number | null {
+  if (overflow(content, box, { ...layout, zoom: 1 }) <= 0) return 1;
+  if (overflow(content, box, { ...layout, zoom: MIN_ZOOM }) > 0) return null;
+  let low = MIN_ZOOM;
+  let high = 1;
+  for (let i = 0; i < 5; i++) {
+    const middle = (low + high) / 2;
+    if (overflow(content, box, { ...layout, zoom: middle }) <= 0) low = middle;
+    else high = middle;
+  }
+  return Math.floor(low * 100) / 100;
+}
+
+/** Chooses and applies the most readable layout of `content` that fits `box`. */
+export function fitToBox(content: HTMLElement, box: HTMLElement): Fit {
+  const full: Layout = { zoom: 1, stage: STAGE_SHARES[1], width: 1 };
+  if (box.getBoundingClientRect().height <= 0) {
+    apply(content, full);
+    return { ...full, fits: false };
+  }
+  // The stage share that leaves the least overflow at full size (the largest on a tie).
+  let best: Layout = { ...full, stage: STAGE_SHARES[0] };
+  let bestOverflow = Infinity;
+  for (const stage of STAGE_SHARES) {
+    const excess = Math.max(0, overflow(content, box, { ...full, stage }));
+    if (excess < bestOverflow - 1) {
+      best = { ...full, stage };
+      bestOverflow = excess;
+    }
+    if (excess <= 0) break;
+  }
+  for (const width of [1, ...WIDTHS]) {
+    const layout = { ...best, width };
+    const zoom = largestZoom(content, box, layout);
+    if (zoom !== null) {
+      apply(content, { ...layout, zoom });
+      return { ...layout, zoom, fits: true };
+    }
+  }
+  const last = { ...best, width: WIDTHS[WIDTHS.length - 1] ?? 1, zoom: MIN_ZOOM };
+  apply(content, last);
+  return { ...last, fits: false };
+}
+
+/** Removes a fit (narrow screens, where the deck scrolls like a page instead). */
+export function unfit(content: HTMLElement): void {
+  content.style.zoom = '';
+  content.style.removeProperty('--deck-stage');
+  content.style.maxWidth = '';
+}
