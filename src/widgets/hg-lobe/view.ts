@@ -152,6 +152,8 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
     }
     return found;
   };
+  /** The 3D lobe's scene last shown (see show). */
+  let lobeScene = '';
   /** The polar picture's inputs last drawn (it does not depend on N or the seed). */
   let polarKey = '';
   const polarKeyOf = (inputs: HgLobeInputs, kind: string): string =>
@@ -439,6 +441,7 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
     refinement: (frame) => frame.stage,
     onCpuFallback: () => {
       polarKey = '';
+      lobeScene = '';
       lobe?.useCpu();
       sweep?.cancel('stopped: the GPU path was lost');
     },
@@ -454,7 +457,11 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
     },
     show({ inputs, histogram }, backend) {
       const layout = polarLayout(inputs, polar.element.width, polar.element.height);
-      lobe?.show({ inputs, logFloor: layout.logFloor });
+      // The 3D lobe depends on g, the comparison and the scale only: a refinement
+      // stage (more samples of the same lobe) does not draw it again.
+      const scene = `${inputs.g}:${inputs.compare}:${inputs.scale}:${layout.logFloor}:${backend.kind}`;
+      if (scene !== lobeScene) lobe?.show({ inputs, logFloor: layout.logFloor });
+      lobeScene = scene;
       drawLabels(labels, inputs, layout);
       const g = inputs.g;
       const other = COMPARE_NAMES[inputs.compare];
