@@ -49,14 +49,14 @@ const TIMING_FRAMES = 8;
 
 /** Refinement starts at most this many doublings below the reader's N (and at 2¹⁰)… */
 const REFINE_DOUBLINGS = 6;
-/** …and climbs this many doublings per stage: the stages before full quality add ⅓ of its cost, not all of it. */
-const DOUBLINGS_PER_RUNG = 2;
+/** …and climbs this many doublings per stage: the stages before full quality add 1/7 of its cost, not all of it. */
+const DOUBLINGS_PER_RUNG = 3;
 /** The CPU fallback's polar picture: 1/POLAR_CPU_SCALE of the canvas's resolution. */
 const POLAR_CPU_SCALE = 2;
 
 /**
  * The histogram's refinement (issue 23): the same streams (samples 0 … 2ᵏ − 1 of the
- * reader's seed) with fewer samples first, 2ᵏ for k = n, n − 2, … down to n − 6
+ * reader's seed) with fewer samples first, 2ᵏ for k = n, n − 3, n − 6
  * (not below 2¹⁰), coarse to fine; work is the sample count.
  */
 function sampleRungs(exponent: number): Rung<number>[] {
