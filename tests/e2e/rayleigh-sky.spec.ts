@@ -7,7 +7,14 @@
 // falls back to the float64 twin and says so.
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, readout, trackErrors, waitForRender } from './support.ts';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  trackErrors,
+  waitForRender,
+  waitForSettled,
+} from './support.ts';
 
 const CHAPTER = '/chapters/03-phase-functions-and-in-scattering.html';
 const ID = 'rayleigh-sky-1';
@@ -101,6 +108,45 @@ test('more view-ray samples lower the error against the converged reference, and
   await expect(controlValue(widget, 'sun-elevation')).toHaveValue('22');
   const after = await canvasStats(widget.locator('canvas.sb-canvas'));
   expect(after.png.equals(before.png)).toBe(false);
+});
+
+test('after an input the panorama is a lower-resolution preview first, then settles to the numbers of a fresh load', async ({
+  page,
+}) => {
+  test.setTimeout(180_000);
+  const errors = trackErrors(page);
+  const widget = await openSky(page, { 'sun-elevation': '30' });
+  // Every stage the widget shows, in order, from the next input on.
+  await widget.evaluate((element) => {
+    const stages: string[] = [];
+    (window as unknown as { skyStages: string[] }).skyStages = stages;
+    new MutationObserver(() => stages.push(element.getAttribute('data-stage') ?? '')).observe(
+      element,
+      { attributes: true, attributeFilter: ['data-frames'] },
+    );
+  });
+  const slider = widget.locator('input[type="range"][name="sun-elevation"]');
+  await slider.focus();
+  for (let i = 0; i < 10; i++) await page.keyboard.press('ArrowRight');
+  await expect(controlValue(widget, 'sun-elevation')).toHaveValue('35');
+  await waitForSettled(widget, 120_000);
+  const stages = await page.evaluate(
+    () => (window as unknown as { skyStages: string[] }).skyStages,
+  );
+  expect(stages[0]).toMatch(/^Preview: \d+×\d+ pixels$/);
+  expect(stages.at(-1)).toBe('640×480 pixels');
+  expect(await widget.locator('canvas.sb-canvas').getAttribute('width')).toBe('640');
+  await expect(widget.locator('.sb-cost')).toContainText('panorama 640×480, N = 32');
+  const settled = Object.fromEntries(
+    await Promise.all(
+      ['zenith', 'toward', 'away', 'error', 'sun'].map(
+        async (key) => [key, await readout(widget, key)] as const,
+      ),
+    ),
+  );
+  const fresh = await openSky(page, { 'sun-elevation': '35' });
+  for (const [key, text] of Object.entries(settled)) expect(await readout(fresh, key)).toBe(text);
+  expect(errors).toEqual([]);
 });
 
 test('the sweep plots the relative RMS error against the panorama time, with the fitted slopes', async ({

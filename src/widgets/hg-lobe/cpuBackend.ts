@@ -167,24 +167,48 @@ export function shadeLobe(
   return [encode(color[0]!), encode(color[1]!), encode(color[2]!)];
 }
 
-/** Draws the picture of the WGSL fragment shader lobeFragment, in float64, at 1/scale resolution. */
-export function drawLobeCpu(canvas: HTMLCanvasElement, inputs: HgLobeInputs, scale = 2): void {
-  const context = canvas.getContext('2d');
-  if (!context) throw new Error('this browser cannot draw on a 2D canvas');
-  const layout = polarLayout(inputs, canvas.width, canvas.height);
-  const width = Math.max(1, Math.floor(canvas.width / scale));
-  const height = Math.max(1, Math.floor(canvas.height / scale));
-  const image = context.createImageData(width, height);
+/**
+ * The picture of the WGSL fragment shader lobeFragment for a canvas of canvasWidth ×
+ * canvasHeight, in float64, at 1/scale resolution, as RGBA bytes (pure: it runs in the
+ * compute worker, jobs.ts).
+ */
+export function polarPixels(
+  inputs: HgLobeInputs,
+  canvasWidth: number,
+  canvasHeight: number,
+  scale = 2,
+): { pixels: Uint8ClampedArray<ArrayBuffer>; width: number; height: number } {
+  const layout = polarLayout(inputs, canvasWidth, canvasHeight);
+  const width = Math.max(1, Math.floor(canvasWidth / scale));
+  const height = Math.max(1, Math.floor(canvasHeight / scale));
+  const pixels = new Uint8ClampedArray(4 * width * height);
   for (let row = 0; row < height; row++) {
     for (let column = 0; column < width; column++) {
       const rgb = shadeLobe((column + 0.5) * scale, (row + 0.5) * scale, inputs, layout, scale);
       const offset = (row * width + column) * 4;
-      for (let i = 0; i < 3; i++) image.data[offset + i] = Math.round(255 * rgb[i]!);
-      image.data[offset + 3] = 255;
+      for (let i = 0; i < 3; i++) pixels[offset + i] = Math.round(255 * rgb[i]!);
+      pixels[offset + 3] = 255;
     }
   }
-  const small = new OffscreenCanvas(width, height);
-  small.getContext('2d')?.putImageData(image, 0, 0);
+  return { pixels, width, height };
+}
+
+/** Shows polarPixels' bytes on the canvas, scaled up smoothly to its full size. */
+export function paintPolar(
+  canvas: HTMLCanvasElement,
+  image: { pixels: Uint8ClampedArray<ArrayBuffer>; width: number; height: number },
+): void {
+  const context = canvas.getContext('2d');
+  if (!context) throw new Error('this browser cannot draw on a 2D canvas');
+  const small = new OffscreenCanvas(image.width, image.height);
+  small
+    .getContext('2d')
+    ?.putImageData(new ImageData(image.pixels, image.width, image.height), 0, 0);
   context.imageSmoothingEnabled = true;
   context.drawImage(small, 0, 0, canvas.width, canvas.height);
+}
+
+/** Draws the picture of the WGSL fragment shader lobeFragment, in float64, at 1/scale resolution. */
+export function drawLobeCpu(canvas: HTMLCanvasElement, inputs: HgLobeInputs, scale = 2): void {
+  paintPolar(canvas, polarPixels(inputs, canvas.width, canvas.height, scale));
 }

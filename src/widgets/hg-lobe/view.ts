@@ -9,7 +9,15 @@ import { formatNumber } from '../base/format.ts';
 import { LinePlot, type PlotSeries, createPlotArea } from '../base/plot.ts';
 import { SweepControls, logLogSlope, type SweepPoint } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
-import { drawLobeCpu, sampleHistogramCpu, sampleHistogramCpuInChunks } from './cpuBackend.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import {
+  CPU_FIRST_PICTURE_MS,
+  GPU_FIRST_PICTURE_MS,
+  Ladder,
+  type Rung,
+} from '../base/refinement.ts';
+import { paintPolar, sampleHistogramCpuInChunks } from './cpuBackend.ts';
+import type { jobs as hgJobTable } from './jobs.ts';
 import { HgLobeGpu } from './gpuBackend.ts';
 import { LobeView } from './lobeView.ts';
 import {
@@ -38,6 +46,25 @@ import { COMPARE_NAMES, superscript, type HgLobeFrame } from './widget.ts';
 
 /** Frames whose sampling time the cost line averages (per N and backend). */
 const TIMING_FRAMES = 8;
+
+/** Refinement starts at most this many doublings below the reader's N (and at 2¹⁰)… */
+const REFINE_DOUBLINGS = 6;
+/** …and climbs this many doublings per stage: the stages before full quality add 1/7 of its cost, not all of it. */
+const DOUBLINGS_PER_RUNG = 3;
+/** The CPU fallback's polar picture: 1/POLAR_CPU_SCALE of the canvas's resolution. */
+const POLAR_CPU_SCALE = 2;
+
+/**
+ * The histogram's refinement (issue 23): the same streams (samples 0 … 2ᵏ − 1 of the
+ * reader's seed) with fewer samples first, 2ᵏ for k = n, n − 3, n − 6
+ * (not below 2¹⁰), coarse to fine; work is the sample count.
+ */
+function sampleRungs(exponent: number): Rung<number>[] {
+  const rungs: Rung<number>[] = [];
+  for (let k = exponent; k >= Math.max(10, exponent - REFINE_DOUBLINGS); k -= DOUBLINGS_PER_RUNG)
+    rungs.unshift({ value: k, work: 2 ** k, label: `2${superscript(k)} = ${2 ** k} samples` });
+  return rungs;
+}
 
 /** A slope with three decimals and a true minus sign. */
 function signed(value: number): string {
@@ -97,6 +124,11 @@ function drawLabels(labels: HTMLElement, inputs: HgLobeInputs, layout: PolarLayo
   labels.replaceChildren(...spans);
 }
 
+/** The inputs of a refinement stage: the first 2ᵏ samples of the reader's streams. */
+function stageInputs(inputs: HgLobeInputs, exponent: number): HgLobeInputs {
+  return { ...inputs, samplesExponent: exponent, sampleCount: 2 ** exponent };
+}
+
 export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFrame, HgLobeGpu> {
   const polar = context.canvas({ width: 960, height: 480, className: 'sb-canvas sb-hg-polar' });
   const labels = document.createElement('div');
@@ -106,6 +138,27 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
   let plotArea: HTMLElement | null = null;
   let plot: LinePlot | null = null;
   let plotScale: RadiusScale | null = null;
+  /** The float64 replays and the CPU polar picture, in the compute worker, cached by arguments. */
+  const jobs = workerJobs<typeof hgJobTable>('hg-lobe');
+  /** One ladder per backend and reader's N (its rungs end at that N); each learns its cost per sample. */
+  const ladders = new Map<string, Ladder<number>>();
+  const ladder = (kind: 'gpu' | 'cpu', exponent: number): Ladder<number> => {
+    const key = `${kind}:${exponent}`;
+    let found = ladders.get(key);
+    if (!found) {
+      const budget = kind === 'gpu' ? GPU_FIRST_PICTURE_MS : CPU_FIRST_PICTURE_MS;
+      found = new Ladder(sampleRungs(exponent), budget);
+      ladders.set(key, found);
+    }
+    return found;
+  };
+  /** The 3D lobe's scene last shown (see show). */
+  let lobeScene = '';
+  /** The polar picture's inputs last drawn (it does not depend on N or the seed). */
+  let polarKey = '';
+  const polarKeyOf = (inputs: HgLobeInputs, kind: string): string =>
+    `${kind}:${inputs.g}:${inputs.compare}:${inputs.scale}:${polar.element.width}`;
+
   /** Recent sampling times in ms, keyed by timing kind and N. */
   const recentTimes = new Map<string, number[]>();
 
@@ -125,6 +178,7 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
     inputs: HgLobeInputs,
     histogram: HgHistogram,
     replay: HgHistogram,
+    stage: HgLobeFrame['stage'],
   ): HgLobeFrame => {
     const g = inputs.g;
     let moved = 0;
@@ -142,6 +196,7 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
       chi: chiSquareTest(histogram.bins, hgBinProbabilities(g), histogram.sampleCount),
       alpha: ALPHA,
       moved: moved / 2,
+      stage,
     };
   };
 
@@ -336,28 +391,57 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
       sweep = controls;
     },
     createRenderer: (gpu: GpuContext) => new HgLobeGpu(gpu, polar.element),
-    async renderGpu(renderer, gpu) {
+    async renderGpu(renderer, gpu, request) {
+      const started = performance.now();
       const inputs = inputsFrom(context.values);
+      const steps = ladder('gpu', inputs.samplesExponent);
+      const choice = steps.pick(request);
       const layout = polarLayout(inputs, polar.element.width, polar.element.height);
-      const histogram = await renderer.sample(inputs, layout);
-      await renderer.draw(inputs, layout);
+      const histogram = await renderer.sample(stageInputs(inputs, choice.rung.value), layout);
+      // The polar picture does not depend on N or the seed: drawn once per picture.
+      const key = polarKeyOf(inputs, 'gpu');
+      if (request.stage === 0 || key !== polarKey) {
+        await renderer.draw(inputs, layout);
+        polarKey = key;
+      }
       lobe?.useGpu(gpu);
-      // The twin replays the same streams, capped so that dragging a slider stays smooth.
-      const replay = sampleHistogramCpu(
-        inputs.g,
-        Math.min(inputs.sampleCount, CPU_TIMING_CAP),
-        inputs.seed,
+      // The twin replays the same streams in the worker, capped so that dragging a slider stays smooth.
+      const replay = await jobs.run(
+        'histogram',
+        [inputs.g, Math.min(histogram.sampleCount, CPU_TIMING_CAP), inputs.seed],
+        { signal: request.signal },
       );
-      return frameOf(inputs, histogram, replay);
+      const frame = frameOf(inputs, histogram, replay, steps.refinement(choice));
+      steps.record(choice.index, performance.now() - started);
+      return frame;
     },
-    renderCpu() {
+    async renderCpu(request) {
+      const started = performance.now();
       const inputs = inputsFrom(context.values);
-      drawLobeCpu(polar.element, inputs);
+      const steps = ladder('cpu', inputs.samplesExponent);
+      const choice = steps.pick(request);
+      const key = polarKeyOf(inputs, 'cpu');
+      if (request.stage === 0 || key !== polarKey) {
+        const { width, height } = polar.element;
+        const image = await jobs.run('polar', [inputs, width, height, POLAR_CPU_SCALE], {
+          signal: request.signal,
+        });
+        paintPolar(polar.element, image);
+        polarKey = key;
+      }
       lobe?.useCpu();
-      const histogram = sampleHistogramCpu(inputs.g, inputs.sampleCount, inputs.seed);
-      return frameOf(inputs, histogram, histogram);
+      const stage = stageInputs(inputs, choice.rung.value);
+      const histogram = await jobs.run('histogram', [stage.g, stage.sampleCount, stage.seed], {
+        signal: request.signal,
+      });
+      const frame = frameOf(inputs, histogram, histogram, steps.refinement(choice));
+      steps.record(choice.index, performance.now() - started);
+      return frame;
     },
+    refinement: (frame) => frame.stage,
     onCpuFallback: () => {
+      polarKey = '';
+      lobeScene = '';
       lobe?.useCpu();
       sweep?.cancel('stopped: the GPU path was lost');
     },
@@ -373,7 +457,11 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
     },
     show({ inputs, histogram }, backend) {
       const layout = polarLayout(inputs, polar.element.width, polar.element.height);
-      lobe?.show({ inputs, logFloor: layout.logFloor });
+      // The 3D lobe depends on g, the comparison and the scale only: a refinement
+      // stage (more samples of the same lobe) does not draw it again.
+      const scene = `${inputs.g}:${inputs.compare}:${inputs.scale}:${layout.logFloor}:${backend.kind}`;
+      if (scene !== lobeScene) lobe?.show({ inputs, logFloor: layout.logFloor });
+      lobeScene = scene;
       drawLabels(labels, inputs, layout);
       const g = inputs.g;
       const other = COMPARE_NAMES[inputs.compare];

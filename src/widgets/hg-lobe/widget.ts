@@ -8,6 +8,7 @@
 import { defineWidget, type FrameBackend } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { HG_LOBE } from './schema.ts';
+import type { Refinement } from '../base/refinement.ts';
 import type { ChiSquareResult, HgHistogram, HgLobeInputs, MeanCosine } from './model.ts';
 
 /**
@@ -33,6 +34,8 @@ export interface HgLobeFrame {
   alpha: number;
   /** Samples in a different bin than the float64 replay (equal sample counts only). */
   moved: number;
+  /** Which refinement stage the histogram is (a preview draws fewer of the same samples). */
+  stage: Refinement;
 }
 
 export const COMPARE_NAMES = { none: '', isotropic: 'isotropic', rayleigh: 'Rayleigh' } as const;
@@ -115,7 +118,10 @@ export const widget = defineWidget<HgLobeFrame>({
     cost: ({ histogram }) => ({ milliseconds: histogram.milliseconds, timing: histogram.timing }),
     costLine: ({ inputs, histogram, replay, averageMs, averagedFrames }, how, backend) => {
       const n = histogram.sampleCount;
-      const nText = `2${superscript(inputs.samplesExponent)} = ${n} samples`;
+      const exponent = Math.round(Math.log2(n));
+      const nText =
+        `2${superscript(exponent)} = ${n} samples` +
+        (exponent < inputs.samplesExponent ? ` of 2${superscript(inputs.samplesExponent)}` : '');
       const time =
         averagedFrames > 1
           ? `${formatMilliseconds(averageMs)} (${how}, mean of the last ${averagedFrames} frames at this N)`

@@ -10,6 +10,7 @@ import { formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
 import { gradientCss, imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
+import { SLICE_MS } from '../base/refinement.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
@@ -30,8 +31,12 @@ import {
 } from './model.ts';
 import type { InverseRenderFrame } from './widget.ts';
 
-/** Wall time one batch of iterations should take: long enough to amortize a submit, short enough to stay responsive. */
-const BATCH_TARGET_MS = 120;
+/**
+ * Wall time one batch of iterations should take: long enough to amortize a submit,
+ * short enough that a batch never holds the page (or, on the GPU, the queue other
+ * widgets share) past the long-task threshold (issue 23: steps of at most SLICE_MS).
+ */
+const BATCH_TARGET_MS = 0.8 * SLICE_MS;
 /** How often the views are re-rendered and read back during a run. */
 const REDRAW_MS = 700;
 /** Window of the iteration-rate readout. */
@@ -93,6 +98,10 @@ export function createView(
   let rateSamples: RateSample[] = [];
   /** The render of every view at set-up, then the time per iteration of the last batch. */
   let cost: FrameCost = { milliseconds: NaN, timing: 'cpu' };
+  /** Wall time of the set-up of the current problem: targets and the first render of every view (ms). */
+  let setupMs = NaN;
+  /** The last batch: its iterations and wall time (ms); null before the first. */
+  let lastBatch: { iterations: number; milliseconds: number } | null = null;
   let running = false;
   /** Bumped whenever the run must stop (reset, new problem, device loss, destroy). */
   let token = 0;
@@ -155,6 +164,8 @@ export function createView(
       timing,
       dropped,
       cost,
+      setupMs,
+      lastBatch,
       resolution: problem.resolution,
       trainViews: problem.trainViews,
       size: problem.size,
@@ -233,6 +244,7 @@ export function createView(
     trainer = null;
     trainerKey = '';
     setStatus('Preparing the target images…');
+    const started = performance.now();
     const created = await create();
     if (setup !== setupToken || context.signal.aborted) {
       created.destroy();
@@ -254,7 +266,9 @@ export function createView(
     for (const [view, canvases] of viewCanvases.entries())
       paintView(canvases.target, targets, view, problem.size);
     if (novelTarget) paintView(novelTarget, targets, problem.trainViews, problem.size);
+    lastBatch = null;
     await drawFit();
+    setupMs = performance.now() - started;
     initialTrainMse = trainMse;
     trainerKey = key;
     plotLosses();
@@ -318,7 +332,12 @@ export function createView(
         const current = trainer;
         const remaining = budget() - iteration;
         if (remaining <= 0) break;
+        const batchStart = performance.now();
         const result = await current.train(Math.min(count, remaining), hyperFrom(context.values));
+        lastBatch = {
+          iterations: result.losses.length,
+          milliseconds: performance.now() - batchStart,
+        };
         if (!live() || current !== trainer) return;
         const done = result.losses.length;
         losses.push(...Array.from(result.losses));

@@ -31,6 +31,10 @@ export interface InverseRenderFrame {
   dropped: number;
   /** The measured cost: per iteration once training ran, else the render of every view. */
   cost: FrameCost;
+  /** Wall time of setting up the problem: the targets and the first render of every view (ms). */
+  setupMs: number;
+  /** The last batch of iterations (one step of the training job) and its wall time (ms). */
+  lastBatch: { iterations: number; milliseconds: number } | null;
   resolution: number;
   trainViews: number;
   size: number;
@@ -38,6 +42,15 @@ export interface InverseRenderFrame {
   rays: number;
   learningRate: number;
   regularizer: string;
+}
+
+/** What the frame cost: the set-up of the problem before training, then the last batch of iterations. */
+function costText(frame: InverseRenderFrame, how: string): string {
+  const setup = `set-up (targets and the first render of every view) ${formatMilliseconds(frame.setupMs)} wall time`;
+  if (!frame.lastBatch || frame.iteration === 0)
+    return `Render of every view in ${formatMilliseconds(frame.cost.milliseconds)} (${how}); ${setup}.`;
+  const { iterations, milliseconds } = frame.lastBatch;
+  return `${formatMilliseconds(frame.cost.milliseconds)} per iteration (${how}); last step of the run: ${iterations} iteration${iterations === 1 ? '' : 's'} in ${formatMilliseconds(milliseconds)} wall time; ${setup}.`;
 }
 
 export const widget = defineWidget<InverseRenderFrame>({
@@ -121,12 +134,12 @@ export const widget = defineWidget<InverseRenderFrame>({
       },
     ],
     cost: (frame) => frame.cost,
-    costLine: (frame, _how, backend) =>
+    costLine: (frame, how, backend) =>
       `${backend.kind === 'cpu' ? 'the float64 twin, ' : ''}a ${frame.resolution}³ grid (${(4 * frame.resolution ** 3).toLocaleString('en')} parameters), ${frame.trainViews} training view${frame.trainViews === 1 ? '' : 's'} of ${frame.size}×${frame.size} pixels; each iteration marches ${frame.rays} rays × ${frame.steps} samples forward and backward, then Adam (η = ${frame.learningRate}, ${frame.regularizer}). ${
         Number.isFinite(frame.rate) && frame.rate > 0
           ? `${formatNumber(frame.rate, 3)} iterations/s. `
           : ''
-      }Targets: the hidden volume, 192 samples per ray.`,
+      }Targets: the hidden volume, 192 samples per ray. ${costText(frame, how)}`,
   },
   slides: [
     {

@@ -1,6 +1,7 @@
 // CPU backend of <sb-rayleigh-sky>: the float64 twin of the kernel's fragment
-// shader draws the same panorama on a 2D canvas at reduced resolution. Used
-// without WebGPU and after a device loss.
+// shader computes the same panorama (in the compute worker, jobs.ts), shown on a 2D
+// canvas at the resolution of its refinement stage. Used without WebGPU and after a
+// device loss.
 import {
   ELEVATION_MAX_DEG,
   ELEVATION_MIN_DEG,
@@ -69,26 +70,41 @@ export function shadeSky(
   return color.map((c, i) => srgbEncode(c + (sun[i]! - c) * disc)) as Rgb;
 }
 
-/** Draws the panorama of skyFragment in float64 at 1/scale resolution; returns the time (ms). */
-export function drawSkyCpu(canvas: HTMLCanvasElement, inputs: SkyInputs, scale = 4): number {
-  const start = performance.now();
-  const context = canvas.getContext('2d');
-  if (!context) throw new Error('this browser cannot draw on a 2D canvas');
-  const width = Math.max(1, Math.floor(canvas.width / scale));
-  const height = Math.max(1, Math.floor(canvas.height / scale));
+/**
+ * The panorama of skyFragment in float64 at width × height pixels, as RGBA bytes
+ * (pure: it runs in the compute worker, see jobs.ts).
+ */
+export function skyPixels(
+  inputs: SkyInputs,
+  width: number,
+  height: number,
+): Uint8ClampedArray<ArrayBuffer> {
   const sun = sunTransmittance(inputs.sinSun, inputs.sunSteps, inputs.scattering);
-  const image = context.createImageData(width, height);
+  const pixels = new Uint8ClampedArray(4 * width * height);
   for (let row = 0; row < height; row++) {
     for (let column = 0; column < width; column++) {
       const rgb = shadeSky(column + 0.5, row + 0.5, width, height, inputs, sun);
       const offset = (row * width + column) * 4;
-      for (let i = 0; i < 3; i++) image.data[offset + i] = Math.round(255 * rgb[i]!);
-      image.data[offset + 3] = 255;
+      for (let i = 0; i < 3; i++) pixels[offset + i] = Math.round(255 * rgb[i]!);
+      pixels[offset + 3] = 255;
     }
   }
-  const small = new OffscreenCanvas(width, height);
-  small.getContext('2d')?.putImageData(image, 0, 0);
-  context.imageSmoothingEnabled = true;
-  context.drawImage(small, 0, 0, canvas.width, canvas.height);
-  return performance.now() - start;
+  return pixels;
+}
+
+/**
+ * Shows RGBA bytes of width × height on a 2D canvas at that size (the canvas's CSS
+ * size stays: the browser scales the picture up smoothly, as the sky is smooth).
+ */
+export function paintSky(
+  canvas: HTMLCanvasElement,
+  pixels: Uint8ClampedArray<ArrayBuffer>,
+  width: number,
+  height: number,
+): void {
+  if (canvas.width !== width) canvas.width = width;
+  if (canvas.height !== height) canvas.height = height;
+  const context = canvas.getContext('2d');
+  if (!context) throw new Error('this browser cannot draw on a 2D canvas');
+  context.putImageData(new ImageData(pixels, width, height), 0, 0);
 }

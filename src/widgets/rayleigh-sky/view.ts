@@ -8,8 +8,18 @@ import { formatNumber } from '../base/format.ts';
 import { SweepControls } from '../base/sweep.ts';
 import { timingLabel } from '../base/timing.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
-import { drawSkyCpu } from './cpuBackend.ts';
-import { RayleighSkyGpu, type PanoramaTime } from './gpuBackend.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import {
+  GPU_FIRST_PICTURE_MS,
+  CPU_FIRST_PICTURE_MS,
+  Ladder,
+  type FrameRequest,
+  type Rung,
+  type RungChoice,
+} from '../base/refinement.ts';
+import { paintSky } from './cpuBackend.ts';
+import { RayleighSkyGpu, type GpuProbes, type PanoramaTime } from './gpuBackend.ts';
+import type { jobs as skyJobTable } from './jobs.ts';
 import {
   CANVAS_HEIGHT,
   CANVAS_WIDTH,
@@ -19,14 +29,12 @@ import {
   FIT_FROM_STEPS,
   SUN_ENLARGEMENT,
   SWEEP_STEPS,
-  computeProbes,
   fitSweep,
   inputsFrom,
   median,
   nextPassCount,
   probeError,
   probesFor,
-  referenceProbesAsync,
   relativeError,
   srgbEncode,
   sunStepsFor,
@@ -36,44 +44,28 @@ import {
 } from './model.ts';
 import { CPU_SCALE, type RayleighSkyFrame, type SkyTiming } from './widget.ts';
 
-/** Frame times kept per N for the readout's median. */
+/** Frame times kept per N and resolution for the readout's median. */
 const FRAME_HISTORY = 5;
 /** The sweep times each N as the median of up to this many frames… */
 const SWEEP_FRAMES = 3;
 /** …but stops at fewer once a point has taken this long (SwiftShader: N = 128 ≈ 7 s a frame). */
 const SWEEP_POINT_BUDGET_MS = 1500;
-/** The CPU fallback times the float64 probes in batches of at least this long (timer resolution). */
-const CPU_BATCH_MS = 10;
-
-function pause(): Promise<void> {
-  return new Promise((resolve) => setTimeout(resolve, 0));
-}
 
 /**
- * CPU wall time (ms) of the three float64 probes and the sun at these N and M:
- * one evaluation takes µs to ms, below the browser timer's resolution at small N,
- * so each of three batches repeats it for at least CPU_BATCH_MS; the median of
- * the batch means. Yields between batches so the page stays live.
+ * The panorama's refinement (issue 23): the same integral per pixel (the reader's N
+ * and M), on fewer pixels first; the browser scales the canvas up smoothly. Work is
+ * the pixel count relative to the full canvas. The GPU climbs to the full canvas, the
+ * CPU twin to a quarter of it (its full quality: 1/CPU_SCALE of the resolution).
  */
-async function timeProbesCpu(
-  inputs: SkyInputs,
-): Promise<{ probes: SkyProbes; milliseconds: number }> {
-  let probes = computeProbes(inputs);
-  const perEvaluation: number[] = [];
-  for (let batch = 0; batch < 3; batch++) {
-    await pause();
-    let repeats = 0;
-    const start = performance.now();
-    let elapsed = 0;
-    do {
-      probes = computeProbes(inputs);
-      repeats += 1;
-      elapsed = performance.now() - start;
-    } while (elapsed < CPU_BATCH_MS);
-    perEvaluation.push(elapsed / repeats);
-  }
-  return { probes, milliseconds: median(perEvaluation) };
+function skyRungs(divisors: readonly number[]): Rung<number>[] {
+  return divisors.map((divisor) => ({
+    value: divisor,
+    work: 1 / divisor ** 2,
+    label: `${CANVAS_WIDTH / divisor}×${CANVAS_HEIGHT / divisor} pixels`,
+  }));
 }
+const GPU_RUNGS = skyRungs([8, 4, 2, 1]);
+const CPU_RUNGS = skyRungs([4 * CPU_SCALE, 2 * CPU_SCALE, CPU_SCALE]);
 
 /** Angle labels over the canvas, in per cent of its size so they follow its CSS size. */
 function drawLabels(labels: HTMLElement, inputs: SkyInputs): void {
@@ -134,45 +126,92 @@ export function createView(
   const labels = document.createElement('div');
   let swatch: HTMLElement | null = null;
   let sweep: SweepControls | null = null;
-  /** Recent panorama times per backend, timing method and N, for the median readout. */
+  /** Recent panorama times per backend, timing method, N and resolution, for the median readout. */
   const frameTimes = new Map<string, number[]>();
-  /** Passes per timed submit, per N (see nextPassCount). */
-  const passCounts = new Map<number, number>();
+  /** Passes per timed submit, per N and resolution (see nextPassCount). */
+  const passCounts = new Map<string, number>();
   /** Counts sweep runs, so a superseded run leaves the readouts to the newer one. */
   let sweepRuns = 0;
+  /** The float64 work (reference, CPU panorama and probes) in the compute worker, cached by arguments. */
+  const jobs = workerJobs<typeof skyJobTable>('rayleigh-sky');
+  /** Each backend learns its own cost per pixel (refinement.ts). */
+  const gpuLadder = new Ladder(GPU_RUNGS, GPU_FIRST_PICTURE_MS);
+  const cpuLadder = new Ladder(CPU_RUNGS, CPU_FIRST_PICTURE_MS);
+  /** The GPU probes of the last inputs: later stages of one picture reuse them. */
+  let gpuProbes: { key: string; probes: GpuProbes } | null = null;
 
-  /** Keeps the last FRAME_HISTORY times for this backend, timing and N; returns their median. */
+  /** Keeps the last FRAME_HISTORY times for this backend, timing, N and size; returns their median. */
   const recordFrame = (
     kind: 'gpu' | 'cpu',
     timing: SkyTiming,
     steps: number,
+    size: string,
     milliseconds: number,
   ): { milliseconds: number; frames: number } => {
-    const key = `${kind}:${timing}:${steps}`;
+    const key = `${kind}:${timing}:${steps}:${size}`;
     const times = [...(frameTimes.get(key) ?? []), milliseconds].slice(-FRAME_HISTORY);
     frameTimes.set(key, times);
     return { milliseconds: median(times), frames: times.length };
   };
 
-  /** The probes' errors against the float64 reference, computed once per (sun elevation, scattering) and cached; never per frame. */
+  const referenceArgs = (inputs: SkyInputs): [number, number, boolean] => [
+    inputs.sinSun,
+    inputs.cosSun,
+    inputs.scattering,
+  ];
+
+  /**
+   * The probes' errors against the float64 reference, computed once per (sun
+   * elevation, scattering) in the worker and cached; never per frame. A preview does
+   * not wait for a reference not computed yet (it says so, and the job runs on); the
+   * full-quality frame does.
+   */
   const compared = async (
     inputs: SkyInputs,
     probes: SkyProbes,
-  ): Promise<{ errors: (number | null)[]; rms: number | null }> => {
-    const reference = await referenceProbesAsync(inputs);
+    request: FrameRequest,
+    final: boolean,
+  ): Promise<Pick<RayleighSkyFrame, 'errors' | 'rms'>> => {
+    const args = referenceArgs(inputs);
+    let reference = jobs.cached('reference', args);
+    if (!reference) {
+      const pending = jobs.run('reference', args, { signal: request.signal });
+      if (!final) {
+        pending.catch(() => undefined);
+        return { errors: null, rms: null };
+      }
+      reference = await pending;
+    }
     return {
       errors: probes.radiance.map((rgb, k) => relativeError(rgb, reference.radiance[k]!)),
       rms: probeError(probes, reference),
     };
   };
 
-  /** One timed panorama at inputs.steps, with the pass count learned for that N. */
+  /** Sets the canvas to 1/divisor of the full panorama (the GPU draws at the canvas's size). */
+  const resize = (divisor: number): { width: number; height: number } => {
+    const width = CANVAS_WIDTH / divisor;
+    const height = CANVAS_HEIGHT / divisor;
+    const canvas = sky.element;
+    if (canvas.width !== width) canvas.width = width;
+    if (canvas.height !== height) canvas.height = height;
+    return { width, height };
+  };
+
+  /** One timed panorama at inputs.steps and the canvas's size, with the pass count learned for both. */
   const drawTimed = async (renderer: RayleighSkyGpu, inputs: SkyInputs): Promise<PanoramaTime> => {
-    const passes = passCounts.get(inputs.steps) ?? 1;
+    const key = `${inputs.steps}:${sky.element.width}`;
+    const passes = passCounts.get(key) ?? 1;
     const frame = await renderer.draw(inputs, passes);
-    passCounts.set(inputs.steps, nextPassCount(passes, frame.spanMilliseconds));
+    passCounts.set(key, nextPassCount(passes, frame.spanMilliseconds));
     return frame;
   };
+
+  /** The frame's stage, for the readouts and the base (refinement). */
+  const stageOf = (choice: RungChoice<number>): RayleighSkyFrame['stage'] => ({
+    ...gpuLadder.refinement(choice),
+    final: choice.final,
+  });
 
   /**
    * Up to SWEEP_FRAMES timed panoramas at inputs.steps (fewer once the point has
@@ -185,20 +224,23 @@ export function createView(
   ): Promise<PanoramaTime[]> => {
     const frames: PanoramaTime[] = [];
     const start = performance.now();
-    let passes = passCounts.get(inputs.steps) ?? 1;
+    const { width, height } = resize(1);
+    const key = `${inputs.steps}:${width}`;
+    let passes = passCounts.get(key) ?? 1;
     let last: PanoramaTime | null = null;
     for (let draws = 0; frames.length < SWEEP_FRAMES && draws < SWEEP_FRAMES + 4; draws++) {
+      resize(1); // a refinement stage drawn meanwhile may have made the canvas smaller
       last = await renderer.draw(inputs, passes);
       const next = nextPassCount(passes, last.spanMilliseconds);
       if (next === passes) {
         frames.push(last);
-        recordFrame('gpu', last.timing, inputs.steps, last.milliseconds);
+        recordFrame('gpu', last.timing, inputs.steps, `${width}×${height}`, last.milliseconds);
       } else {
         passes = next;
       }
       if (frames.length > 0 && performance.now() - start > SWEEP_POINT_BUDGET_MS) break;
     }
-    passCounts.set(inputs.steps, passes);
+    passCounts.set(key, passes);
     if (frames.length === 0 && last) frames.push(last);
     return frames;
   };
@@ -236,7 +278,9 @@ export function createView(
     await controls.run(async () => {
       const inputs = inputsFrom(context.values);
       const backend: Backend<RayleighSkyGpu> = await context.backend();
-      const reference = await referenceProbesAsync(inputs);
+      const reference = await jobs.run('reference', referenceArgs(inputs), {
+        signal: context.signal,
+      });
       context.setReadout('slope', 'sweeping…');
       context.setReadout('time-slope', 'sweeping…');
       const label = `sun at ${formatNumber(inputs.sunElevationDeg, 3)}°${inputs.scattering ? '' : ', no air'}`;
@@ -256,7 +300,10 @@ export function createView(
               milliseconds: median(frames.map((f) => f.milliseconds)),
             };
           }
-          const { probes, milliseconds } = await timeProbesCpu(at);
+          // Timed in the worker (jobs.ts: batches of repeats, so never below the clock).
+          const { probes, milliseconds } = await jobs.run('probes', [at], {
+            signal: context.signal,
+          });
           return { rmse: probeError(probes, reference) ?? 0, milliseconds };
         },
         finish: (points) => {
@@ -284,7 +331,7 @@ export function createView(
 
   return {
     cpuNotice:
-      'Showing the float64 CPU twin: the same integral with the same N and M, the picture drawn at quarter resolution.',
+      'Showing the float64 CPU twin: the same integral with the same N and M, the picture computed in a worker, refined up to quarter resolution.',
     build(stage) {
       const figure = document.createElement('div');
       figure.className = 'sb-sky-figure';
@@ -325,48 +372,82 @@ export function createView(
       area.append(orders, scope);
     },
     createRenderer: (gpu: GpuContext) => new RayleighSkyGpu(gpu, sky.element),
-    async renderGpu(renderer) {
+    async renderGpu(renderer, _gpu, request) {
+      const started = performance.now();
       const inputs = inputsFrom(context.values);
-      const probes = await renderer.probes(inputs);
+      const choice = gpuLadder.pick(request);
+      const { width, height } = resize(choice.rung.value);
+      // The probes do not depend on the resolution: one compute pass per picture.
+      const key = JSON.stringify(inputs);
+      if (request.stage === 0 || gpuProbes?.key !== key)
+        gpuProbes = { key, probes: await renderer.probes(inputs) };
+      const probes = gpuProbes.probes;
       const frame = await drawTimed(renderer, inputs);
-      const recent = recordFrame('gpu', frame.timing, inputs.steps, frame.milliseconds);
-      return {
+      const size = `${width}×${height}`;
+      const recent = recordFrame('gpu', frame.timing, inputs.steps, size, frame.milliseconds);
+      const result: RayleighSkyFrame = {
         inputs,
         probes: { radiance: probes.radiance, sunTransmittance: probes.sunTransmittance },
         probeMilliseconds: probes.milliseconds,
         probeTiming: probes.timing,
+        probeRepeats: 1,
         capped: probes.capped,
         picture: {
           ...recent,
+          width,
+          height,
           lastMilliseconds: frame.milliseconds,
           passes: frame.passes,
           timing: frame.timing,
         },
-        ...(await compared(inputs, probes)),
+        stage: stageOf(choice),
+        ...(await compared(inputs, probes, request, choice.final)),
       };
+      // The ladder learns the whole stage's time (probes and read-back too), not only the pass's.
+      gpuLadder.record(choice.index, performance.now() - started);
+      return result;
     },
-    async renderCpu() {
+    async renderCpu(request) {
+      const started = performance.now();
       const inputs = inputsFrom(context.values);
-      const pictureMilliseconds = drawSkyCpu(sky.element, inputs, CPU_SCALE);
-      const start = performance.now();
-      const probes = computeProbes(inputs);
-      const probeMilliseconds = performance.now() - start;
-      const recent = recordFrame('cpu', 'cpu', inputs.steps, pictureMilliseconds);
-      return {
+      const choice = cpuLadder.pick(request);
+      const width = CANVAS_WIDTH / choice.rung.value;
+      const height = CANVAS_HEIGHT / choice.rung.value;
+      // The float64 panorama and probes run in the compute worker: the page never waits on them.
+      const image = await jobs.run('panorama', [inputs, width, height], {
+        signal: request.signal,
+      });
+      paintSky(sky.element, image.pixels, width, height);
+      const timed = await jobs.run('probes', [inputs], { signal: request.signal });
+      const recent = recordFrame(
+        'cpu',
+        'cpu',
+        inputs.steps,
+        `${width}×${height}`,
+        image.milliseconds,
+      );
+      const result: RayleighSkyFrame = {
         inputs,
-        probes,
-        probeMilliseconds,
+        probes: timed.probes,
+        probeMilliseconds: timed.milliseconds,
         probeTiming: 'cpu',
+        probeRepeats: timed.repeats,
         capped: false,
         picture: {
           ...recent,
-          lastMilliseconds: pictureMilliseconds,
+          width,
+          height,
+          lastMilliseconds: image.milliseconds,
           passes: 1,
           timing: 'cpu',
         },
-        ...(await compared(inputs, probes)),
+        stage: stageOf(choice),
+        ...(await compared(inputs, timed.probes, request, choice.final)),
       };
+      cpuLadder.record(choice.index, performance.now() - started);
+      return result;
     },
+    refinement: (frame) => frame.stage,
     onCpuFallback: () => sweep?.cancel('stopped: the GPU was lost'),
     destroyRenderer: (renderer) => renderer.destroy(),
     show({ inputs, probes, capped }) {

@@ -10,11 +10,12 @@ import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { RAYLEIGH_SKY } from './schema.ts';
 import { CANVAS_HEIGHT, CANVAS_WIDTH, FIT_FROM_STEPS, REFERENCE_STEPS } from './constants.ts';
+import type { Refinement } from '../base/refinement.ts';
 import type { Rgb, SkyInputs, SkyProbes } from './model.ts';
 
 export type SkyTiming = GpuTiming | 'cpu';
 
-/** The CPU fallback draws the panorama at 1/CPU_SCALE of the canvas's resolution. */
+/** The CPU fallback refines the panorama up to 1/CPU_SCALE of the canvas's resolution. */
 export const CPU_SCALE = 4;
 
 /** Probe keys in probesFor order, and the readout each one fills. */
@@ -24,10 +25,16 @@ const PROBE_KEYS = ['zenith', 'toward', 'away'] as const;
 export interface RayleighSkyFrame {
   inputs: SkyInputs;
   probes: SkyProbes;
+  /** Time of one evaluation of the probes (ms); 0 when under the GPU timer's resolution. */
   probeMilliseconds: number;
   probeTiming: SkyTiming;
+  /** Evaluations the CPU time is a mean over (1 on the GPU). */
+  probeRepeats: number;
   capped: boolean;
   picture: {
+    /** This frame's resolution: a refinement stage draws fewer pixels than the canvas's full 640×480. */
+    width: number;
+    height: number;
     /** This frame's time per panorama (ms), the frame's recorded cost. */
     lastMilliseconds: number;
     /** Median time per panorama over the last `frames` frames at this N (ms). */
@@ -37,10 +44,12 @@ export interface RayleighSkyFrame {
     passes: number;
     timing: SkyTiming;
   };
-  /** Relative error of each probe against the cached float64 reference (null: no light). */
-  errors: (number | null)[];
-  /** Relative RMS error of the probes (null: no light). */
+  /** Relative error of each probe against the cached float64 reference (null: no light); null while a preview's reference is still being computed. */
+  errors: (number | null)[] | null;
+  /** Relative RMS error of the probes (null: no light, or no reference yet). */
   rms: number | null;
+  /** Which refinement stage the picture is (the probes are always at the reader's N and M). */
+  stage: Refinement & { final: boolean };
 }
 
 function formatRgb(rgb: Rgb, digits = 4): string {
@@ -60,6 +69,7 @@ function probeRow(k: number) {
 }
 
 function errorText({ errors, rms }: RayleighSkyFrame): string {
+  if (errors === null) return 'computing the float64 reference…';
   const worst = errors.reduce<number | null>(
     (a, b) => (b === null ? a : Math.max(a ?? 0, b)),
     null,
@@ -68,6 +78,16 @@ function errorText({ errors, rms }: RayleighSkyFrame): string {
     `${formatPercent(worst)} (zenith ${formatPercent(errors[0]!)}, toward ${formatPercent(errors[1]!)}, away ${formatPercent(errors[2]!)})` +
     (rms === null ? '' : `; relative RMS ${formatPercent(rms)}`)
   );
+}
+
+/**
+ * The probe pass's cost. A GPU timestamp is quantized (100 µs in Chrome), so a pass
+ * shorter than that can read 0: it is said to be under the timer's resolution, not 0.
+ */
+function probeCost(milliseconds: number, timing: SkyTiming): string {
+  return milliseconds > 0
+    ? `probes in ${formatMilliseconds(milliseconds)} (${timingLabel(timing)})`
+    : `probes under the timer's resolution (${timingLabel(timing)} reads 0)`;
 }
 
 export const widget = defineWidget<RayleighSkyFrame>({
@@ -119,15 +139,16 @@ export const widget = defineWidget<RayleighSkyFrame>({
       { key: 'time-slope', label: 'Sweep: error ∝ time^q, time ∝ N^a', initial: 'run the sweep' },
     ],
     cost: ({ picture }) => ({ milliseconds: picture.lastMilliseconds, timing: picture.timing }),
-    costLine: ({ inputs, picture, probeMilliseconds, probeTiming }, how, backend) => {
+    costLine: ({ inputs, picture, probeMilliseconds, probeTiming, probeRepeats }, how, backend) => {
+      const size = `${picture.width}×${picture.height}`;
       const work = `N = ${inputs.steps} view samples × M = ${inputs.sunSteps} sun samples per pixel`;
       const frames = `median of ${picture.frames} frame${picture.frames === 1 ? '' : 's'} at this N`;
       const passes =
         picture.passes > 1 ? `, each timed over ${picture.passes} passes in one submit` : '';
       const referenceNote = `Reference: float64, N = M = ${REFERENCE_STEPS}, computed once per sun elevation and cached.`;
       return backend.kind === 'gpu'
-        ? `panorama ${CANVAS_WIDTH}×${CANVAS_HEIGHT}, ${work}, in ${formatMilliseconds(picture.milliseconds)} per frame (${how}, ${frames}${passes}); probes in ${formatMilliseconds(probeMilliseconds)} (${timingLabel(probeTiming)}). ${referenceNote}`
-        : `panorama ${CANVAS_WIDTH / CPU_SCALE}×${CANVAS_HEIGHT / CPU_SCALE}, ${work}, in ${formatMilliseconds(picture.milliseconds)} per frame (${how}, ${frames}); probes in ${formatMilliseconds(probeMilliseconds)} (${timingLabel('cpu')}, float64 twin). ${referenceNote}`;
+        ? `panorama ${size}${picture.width < CANVAS_WIDTH ? ` of ${CANVAS_WIDTH}×${CANVAS_HEIGHT}` : ''}, ${work}, in ${formatMilliseconds(picture.milliseconds)} per frame (${how}, ${frames}${passes}); ${probeCost(probeMilliseconds, probeTiming)}. ${referenceNote}`
+        : `panorama ${size}${picture.width < CANVAS_WIDTH / CPU_SCALE ? ` of ${CANVAS_WIDTH / CPU_SCALE}×${CANVAS_HEIGHT / CPU_SCALE}` : ''}, ${work}, in ${formatMilliseconds(picture.milliseconds)} per frame (${how}, ${frames}, in a worker); probes in ${formatMilliseconds(probeMilliseconds)} each (${timingLabel('cpu')}, float64 twin, mean over ${probeRepeats} evaluations). ${referenceNote}`;
     },
   },
   slides: [

@@ -15,7 +15,9 @@ import { SweepControls } from '../base/sweep.ts';
 import { logLogSlope } from '../../statistics/regression.ts';
 import type { Backend } from '../base/backend.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
-import { CPU_HEIGHT, CPU_WIDTH, paintImages, referenceCpu, renderCpu } from './cpuBackend.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import { CPU_HEIGHT, CPU_WIDTH, paintImages } from './cpuBackend.ts';
+import type { jobs as marchJobTable } from './jobs.ts';
 import { RaymarchStepsGpu } from './gpuBackend.ts';
 import {
   IMAGE_HEIGHT,
@@ -37,11 +39,19 @@ const PLACEMENT_NAMES: Readonly<Record<string, string>> = {
   'jittered-strata': 'jittered per step',
 };
 
-/** One image with `steps` steps per ray on the backend, and the reference to compare it with. */
+/** The CPU fallback's float64 image and reference, in the compute worker, cached by arguments. */
+const cpuJobs = workerJobs<typeof marchJobTable>('raymarch-steps');
+
+/**
+ * One image with `steps` steps per ray on the backend, and the reference to compare
+ * it with. On the CPU both come from the worker (the page never marches), the
+ * reference once per density.
+ */
 async function march(
   backend: Backend<RaymarchStepsGpu>,
   inputs: MarchInputs,
   steps: number,
+  signal?: AbortSignal,
 ): Promise<RaymarchFrame> {
   const measured = async (): Promise<Omit<RaymarchFrame, 'rmse' | 'largestError'>> => {
     if (backend.kind === 'gpu') {
@@ -57,8 +67,9 @@ async function march(
         capped: image.capped,
       };
     }
-    const reference = referenceCpu(inputs.density);
-    const { image, milliseconds } = renderCpu(inputs, steps);
+    const options = signal ? { signal } : {};
+    const { image, milliseconds } = await cpuJobs.run('render', [inputs, steps], options);
+    const reference = await cpuJobs.run('reference', [inputs.density], options);
     return {
       inputs,
       image,
@@ -116,7 +127,7 @@ export function createView(
     });
 
   return {
-    cpuNotice: `Showing the float64 CPU twin: the same rays and marches, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels.`,
+    cpuNotice: `Showing the float64 CPU twin: the same rays and marches, at ${CPU_WIDTH}×${CPU_HEIGHT} pixels, computed in a worker.`,
     build(stage) {
       const error = imagePanel(errorImage, 'Error |L − L_ref|', {
         gradient: gradientCss((x) => errorColour(x, 1)),
@@ -149,9 +160,9 @@ export function createView(
       const inputs = inputsFrom(context.values);
       return march({ kind: 'gpu', gpu, renderer }, inputs, inputs.steps);
     },
-    renderCpu() {
+    renderCpu(request) {
       const inputs = inputsFrom(context.values);
-      return march({ kind: 'cpu', reason: '' }, inputs, inputs.steps);
+      return march({ kind: 'cpu', reason: '' }, inputs, inputs.steps, request.signal);
     },
     onCpuFallback: () => sweep?.cancel('stopped: the GPU was lost'),
     show({ inputs, image, reference, largestError, rmse: error, capped }) {
