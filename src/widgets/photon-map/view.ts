@@ -48,8 +48,19 @@ const SWEEP_POINTS = [1, 2, 4, 8, 16, 32, 64] as const;
 const COLOURS = { pm: '#d9822b', ppm: '#9b72e0', pt: '#5b8def' } as const;
 /** Photons per sweep step: N = SWEEP_PHOTONS·n. */
 const SWEEP_PHOTONS = 4096;
-/** The preview rungs: this fraction of the reader's photons first (at least PREVIEW_MIN_PHOTONS). */
-const PREVIEW_FRACTIONS = [1 / 16, 1 / 4, 1] as const;
+/**
+ * The rungs: a fraction of the reader's photons (at least PREVIEW_MIN_PHOTONS) at a
+ * pixel scale (2: half the resolution, its error against the reference averaged 2×2),
+ * and their work relative to the full picture. The gather over the image costs about
+ * as much as the tracing (4,096 of 65,536 photons at full resolution took a third of
+ * the full time on SwiftShader), hence the half resolution of the first rung.
+ */
+const RUNGS = [
+  { fraction: 1 / 16, pixelScale: 2, work: 0.1, label: '1/16 of the photons, half resolution' },
+  { fraction: 1 / 4, pixelScale: 1, work: 0.4, label: '¼ of the photons' },
+  { fraction: 1, pixelScale: 1, work: 1, label: 'all photons' },
+] as const;
+type PhotonRung = (typeof RUNGS)[number];
 const PREVIEW_MIN_PHOTONS = 1024;
 
 /** The reference as the cost line names it (student-facing: no repository paths). */
@@ -106,12 +117,15 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
     ptSppTarget?: number,
     cpuPhotonCap = CPU_MAX_PHOTONS,
     signal?: AbortSignal,
+    /** Pixels per side of one image pixel (2: a preview at half the resolution). */
+    pixelScale = 1,
   ): Promise<PhotonImages> => {
     const ref = await loadReference();
     if (backend.kind === 'gpu') {
       const device = backend.gpu.device;
       const linked = await kernel();
-      const { width, height } = GPU_SIZE;
+      const width = GPU_SIZE.width / pixelScale;
+      const height = GPU_SIZE.height / pixelScale;
       const pm = await renderPhotonMapGpu(device, linked, inputs, width, height, GATHER_SAMPLES, {
         viewCount: VIEW_PHOTONS,
       });
@@ -145,10 +159,14 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
         overflow: pm.overflow,
         view: pm.view,
         timing: pm.timing,
-        reference: Float64Array.from(ref.mean),
+        reference:
+          ref.width === width
+            ? Float64Array.from(ref.mean)
+            : downsample(ref.mean, ref.width, ref.height, ref.width / width),
       };
     }
-    const { width, height } = CPU_SIZE;
+    const width = CPU_SIZE.width / pixelScale;
+    const height = CPU_SIZE.height / pixelScale;
     const cpuInputs = { ...inputs, photons: Math.min(inputs.photons, cpuPhotonCap) };
     // The float64 twin runs in the compute worker: the page stays responsive.
     const cpu = await cpuJobs.run(
@@ -170,17 +188,12 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
    * the largest fraction of the reader's photons whose measured cost fits the
    * first-picture budget (with path tracing in the same time), later stages the rest.
    */
-  const ladders = new Map<'gpu' | 'cpu', Ladder<number>>();
-  const ladderFor = (kind: 'gpu' | 'cpu'): Ladder<number> => {
+  const ladders = new Map<'gpu' | 'cpu', Ladder<PhotonRung>>();
+  const ladderFor = (kind: 'gpu' | 'cpu'): Ladder<PhotonRung> => {
     let ladder = ladders.get(kind);
     if (!ladder) {
       ladder = new Ladder(
-        PREVIEW_FRACTIONS.map((fraction) => ({
-          value: fraction,
-          work: fraction,
-          label:
-            fraction === 1 ? 'all photons' : `${fraction === 1 / 4 ? '¼' : '1/16'} of the photons`,
-        })),
+        RUNGS.map((rung) => ({ value: rung, work: rung.work, label: rung.label })),
         firstPictureBudget(kind),
       );
       ladders.set(kind, ladder);
@@ -199,7 +212,7 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
       ? inputs.photons
       : Math.min(
           inputs.photons,
-          Math.max(PREVIEW_MIN_PHOTONS, Math.round(inputs.photons * choice.rung.value)),
+          Math.max(PREVIEW_MIN_PHOTONS, Math.round(inputs.photons * choice.rung.value.fraction)),
         );
     // A rung that traces as many photons as the full picture (the CPU twin's cap) is it.
     const traced = (n: number): number =>
@@ -212,6 +225,7 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
       undefined,
       CPU_MAX_PHOTONS,
       request.signal,
+      final ? 1 : choice.rung.value.pixelScale,
     );
     ladder.record(choice.index, performance.now() - start);
     if (request.signal.aborted) return null;
@@ -227,7 +241,7 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
       stage: final
         ? { label: `${inputs.photons.toLocaleString('en-US')} photons`, pending: null }
         : {
-            label: `Preview: ${photons.toLocaleString('en-US')} of ${inputs.photons.toLocaleString('en-US')} photons, path tracing in the same time`,
+            label: `Preview: ${photons.toLocaleString('en-US')} of ${inputs.photons.toLocaleString('en-US')} photons${choice.rung.value.pixelScale > 1 ? ', half resolution' : ''}, path tracing in the same time`,
             pending: 'frame',
           },
     };
