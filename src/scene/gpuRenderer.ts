@@ -99,6 +99,20 @@ export class GpuSceneRenderer implements PassRenderer {
     this.timing = this.timer.available ? 'gpu-timestamp' : 'gpu-wall';
   }
 
+  /**
+   * Links and compiles the kernel of `conditions` without a scene (both cached per
+   * device): a widget warms a variant it may need next, so that switching to it does
+   * not wait for the compiler.
+   */
+  static async prepare(
+    device: GPUDevice,
+    library: KernelLibrary,
+    conditions: Conditions,
+  ): Promise<void> {
+    const code = await linkSceneKernel(library, conditions);
+    await withErrorScopes(device, 'scene kernel', () => pipelineFor(device, code));
+  }
+
   /** Links, compiles (cached) and uploads; the scene must be packed (pack.ts). */
   static async create(
     device: GPUDevice,

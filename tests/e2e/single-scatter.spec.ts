@@ -6,7 +6,13 @@
 // presentation mode works with the presets. The targets are small (16–32 spp) because
 // SwiftShader runs the kernel on the CPU.
 import { expect, test, type Locator, type Page } from '@playwright/test';
-import { canvasStats, parseDisplayed, trackErrors, waitForRender } from './support.ts';
+import {
+  canvasStats,
+  parseDisplayed,
+  trackErrors,
+  waitForRender,
+  waitForSettled,
+} from './support.ts';
 
 const CHAPTER = '/chapters/09-single-scattering.html';
 const ID = 'single-scatter-1';
@@ -164,4 +170,25 @@ test('presentation mode: F enters, number keys recall the presets, Esc leaves', 
   await expect(widget.locator('.sb-ss-plan caption')).toContainText('emission-absorption');
   await page.keyboard.press('Escape');
   await expect(shell).not.toHaveClass(/is-presenting/);
+});
+
+test('an input shows a one-pass preview of the new scene first, then refines', async ({ page }) => {
+  const errors = trackErrors(page);
+  const widget = await openWidget(page, { spp: '16' });
+  await widget.evaluate((element) => {
+    const seen: string[] = [];
+    (window as unknown as { stages: string[] }).stages = seen;
+    new MutationObserver(() => seen.push(element.dataset['stage'] ?? '')).observe(element, {
+      attributeFilter: ['data-frames'],
+    });
+  });
+  await control(widget, 'occluder').selectOption('box');
+  await waitForSettled(widget, 120_000);
+  const stages = await page.evaluate(() => (window as unknown as { stages: string[] }).stages);
+  // The preview is the new run's first pass (the old scene's samples did not carry on);
+  // the next frame adds passes and the reference for the new scene starts.
+  expect(stages[0]).toBe('Preview: 1 of 16 spp');
+  expect(stages.at(-1)).toMatch(/^\d+ of 16 spp/);
+  expect(Number(await widget.getAttribute('data-spp'))).toBeGreaterThan(1);
+  expect(errors).toEqual([]);
 });

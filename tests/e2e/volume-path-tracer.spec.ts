@@ -7,7 +7,14 @@
 // widget's own counters (spp readout, data-rendered), never on wall time.
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import { PNG } from 'pngjs';
-import { canvasStats, parseDisplayed, readout, trackErrors, waitForRender } from './support.ts';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  trackErrors,
+  waitForRender,
+  waitForSettled,
+} from './support.ts';
 
 const CHAPTER = '/chapters/10-multiple-scattering.html';
 const ID = 'volume-path-tracer-1';
@@ -112,6 +119,32 @@ test('raising the albedo changes the multiple-scattering image more than the sin
   expect(multipleAfter).toBeGreaterThan(multipleBefore + 20);
   expect(parseDisplayed(await readout(widget, 'ratio'))).toBeGreaterThan(ratioBefore);
   expect(page.url()).toContain('albedo=0.99');
+});
+
+test('switching to the puffy cloud shows a preview first, then settles; the old scene stops', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await openWidget(page);
+  // Every stage label the widget shows from here on, in order (data-stage, set per frame).
+  await widget.evaluate((element) => {
+    const seen: string[] = [];
+    (window as unknown as { stages: string[] }).stages = seen;
+    new MutationObserver(() => seen.push(element.dataset['stage'] ?? '')).observe(element, {
+      attributeFilter: ['data-frames'],
+    });
+  });
+  await control(widget, 'scene').selectOption('cloud');
+  await waitForSettled(widget, 120_000);
+  const stages = await page.evaluate(() => (window as unknown as { stages: string[] }).stages);
+  // The first frame after the input is the new scene's preview (fewer samples than a
+  // frame's 4: the sphere's count did not carry on), then a whole frame settles it.
+  expect(stages[0]).toMatch(/^Preview: [1-3] of 4 spp$/);
+  expect(await widget.getAttribute('data-stage')).toMatch(/^\d+ spp, accumulating to 1024$/);
+  expect(parseDisplayed(await readout(widget, 'spp'))).toBeGreaterThanOrEqual(4);
+  await expect(widget.locator('[data-readout="plan-multiple"]')).toContainText('majorant grid');
+  expect(parseDisplayed(await readout(widget, 'lookups'))).toBeGreaterThan(0);
+  expect(errors).toEqual([]);
 });
 
 test('pause stops the accumulation and the reference can be cancelled', async ({ page }) => {

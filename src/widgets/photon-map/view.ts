@@ -6,6 +6,7 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import type { Backend } from '../base/backend.ts';
+import { Ladder, firstPictureBudget, type FrameRequest } from '../base/refinement.ts';
 import { formatNumber } from '../base/format.ts';
 import { imageCanvas, imageFigure, imagePanel, niceScale } from '../base/imagePanel.ts';
 import { siteUrl } from '../base/siteUrl.ts';
@@ -18,23 +19,21 @@ import {
   GPU_SIZE,
   SCENE,
   add,
-  buildGridCpu,
   cameraFrame,
   dot,
   downsample,
   gridFor,
   parseReference,
-  pathTraceCpu,
-  photonMapImageCpu,
   progressiveRadius,
   rmse,
   scale,
   sub,
-  tracePhotonsCpu,
   type PhotonInputs,
   type PhotonReference,
 } from './model.ts';
+import type { jobs } from './jobs.ts';
 import { summariseSweep } from './summary.ts';
+import { workerJobs } from '../../workers/compute.ts';
 import { CPU_MAX_PHOTONS, SWEEP_ROWS, type PhotonFrame, type PhotonImages } from './widget.ts';
 
 const VIEW_SIZE = { width: 256, height: 192 } as const;
@@ -49,7 +48,25 @@ const SWEEP_POINTS = [1, 2, 4, 8, 16, 32, 64] as const;
 const COLOURS = { pm: '#d9822b', ppm: '#9b72e0', pt: '#5b8def' } as const;
 /** Photons per sweep step: N = SWEEP_PHOTONS·n. */
 const SWEEP_PHOTONS = 4096;
-const REFERENCE_NOTE = `${GPU_SIZE.width}×${GPU_SIZE.height}, precomputed (scripts/photon-map-reference.ts)`;
+/**
+ * The rungs: a fraction of the reader's photons (at least PREVIEW_MIN_PHOTONS) at a
+ * pixel scale (2: half the resolution, its error against the reference averaged 2×2),
+ * and their work relative to the full picture. The gather over the image costs about
+ * as much as the tracing (4,096 of 65,536 photons at full resolution took a third of
+ * the full time on SwiftShader), hence the half resolution of the first rung.
+ */
+const RUNGS = [
+  { fraction: 1 / 16, pixelScale: 2, work: 0.1, label: '1/16 of the photons, half resolution' },
+  { fraction: 1 / 4, pixelScale: 1, work: 0.4, label: '¼ of the photons' },
+  { fraction: 1, pixelScale: 1, work: 1, label: 'all photons' },
+] as const;
+type PhotonRung = (typeof RUNGS)[number];
+const PREVIEW_MIN_PHOTONS = 1024;
+
+/** The reference as the cost line names it (student-facing: no repository paths). */
+function referenceNote(ref: PhotonReference): string {
+  return `${ref.width}×${ref.height} pixels, ${ref.samples.toLocaleString('en-US')} paths per pixel, computed ahead of time`;
+}
 
 export function inputsFrom(values: Record<string, number | string>): PhotonInputs {
   return {
@@ -58,6 +75,9 @@ export function inputsFrom(values: Record<string, number | string>): PhotonInput
     radius: Number(values['radius'] ?? DEFAULT_INPUTS.radius),
   };
 }
+
+/** The CPU twin's renders, in the compute worker (jobs.ts). */
+const cpuJobs = workerJobs<typeof jobs>('photon-map');
 
 export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonFrame, GpuContext> {
   // 2D canvases on either backend (the GPU work reads back into them), so never swapped.
@@ -96,12 +116,16 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
     inputs: PhotonInputs,
     ptSppTarget?: number,
     cpuPhotonCap = CPU_MAX_PHOTONS,
+    signal?: AbortSignal,
+    /** Pixels per side of one image pixel (2: a preview at half the resolution). */
+    pixelScale = 1,
   ): Promise<PhotonImages> => {
     const ref = await loadReference();
     if (backend.kind === 'gpu') {
       const device = backend.gpu.device;
       const linked = await kernel();
-      const { width, height } = GPU_SIZE;
+      const width = GPU_SIZE.width / pixelScale;
+      const height = GPU_SIZE.height / pixelScale;
       const pm = await renderPhotonMapGpu(device, linked, inputs, width, height, GATHER_SAMPLES, {
         viewCount: VIEW_PHOTONS,
       });
@@ -135,75 +159,91 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
         overflow: pm.overflow,
         view: pm.view,
         timing: pm.timing,
-        reference: Float64Array.from(ref.mean),
+        reference:
+          ref.width === width
+            ? Float64Array.from(ref.mean)
+            : downsample(ref.mean, ref.width, ref.height, ref.width / width),
       };
     }
-    const { width, height } = CPU_SIZE;
+    const width = CPU_SIZE.width / pixelScale;
+    const height = CPU_SIZE.height / pixelScale;
     const cpuInputs = { ...inputs, photons: Math.min(inputs.photons, cpuPhotonCap) };
-    const start = performance.now();
-    const set = tracePhotonsCpu(cpuInputs);
-    const sorted = buildGridCpu(set, gridFor(cpuInputs.radius));
-    const image = photonMapImageCpu(
-      cpuInputs,
-      set,
-      sorted,
-      width,
-      height,
-      GATHER_SAMPLES,
-      inputs.seed,
+    // The float64 twin runs in the compute worker: the page stays responsive.
+    const cpu = await cpuJobs.run(
+      'renderCpuImages',
+      [cpuInputs, width, height, GATHER_SAMPLES, ptSppTarget ?? null, CPU_MAX_SPP, VIEW_PHOTONS],
+      signal ? { signal } : {},
     );
-    const pmMs = performance.now() - start;
-    const sum = new Float64Array(width * height);
-    let ptMs = 0;
-    let spp = 0;
-    for (let pass = 0; ; pass++) {
-      const t0 = performance.now();
-      const r = pathTraceCpu(cpuInputs, width, height, 1, inputs.seed + 7919 * pass);
-      ptMs += performance.now() - t0;
-      for (let i = 0; i < sum.length; i++) sum[i]! += r.sum[i]!;
-      spp += 1;
-      if (ptSppTarget !== undefined ? spp >= ptSppTarget : ptMs >= pmMs || spp >= CPU_MAX_SPP)
-        break;
-    }
-    const view = new Float32Array(Math.min(set.count, VIEW_PHOTONS) * 4);
-    for (let i = 0; i < view.length / 4; i++) {
-      view.set(
-        [
-          set.positions[3 * i]!,
-          set.positions[3 * i + 1]!,
-          set.positions[3 * i + 2]!,
-          set.glass[i]!,
-        ],
-        4 * i,
-      );
-    }
     return {
       width,
       height,
-      photonMap: image,
-      pathTraced: sum.map((s) => s / spp),
-      pmMs,
-      ptMs,
-      ptSpp: spp,
-      stored: set.count,
-      overflow: set.overflow,
-      view,
+      ...cpu,
       timing: 'cpu',
       reference: downsample(ref.mean, ref.width, ref.height, ref.width / width),
     };
   };
 
-  const frameOf = async (backend: Backend<GpuContext>): Promise<PhotonFrame> => {
+  /**
+   * Ladders over the photon count per backend: the first picture after an input traces
+   * the largest fraction of the reader's photons whose measured cost fits the
+   * first-picture budget (with path tracing in the same time), later stages the rest.
+   */
+  const ladders = new Map<'gpu' | 'cpu', Ladder<PhotonRung>>();
+  const ladderFor = (kind: 'gpu' | 'cpu'): Ladder<PhotonRung> => {
+    let ladder = ladders.get(kind);
+    if (!ladder) {
+      ladder = new Ladder(
+        RUNGS.map((rung) => ({ value: rung, work: rung.work, label: rung.label })),
+        firstPictureBudget(kind),
+      );
+      ladders.set(kind, ladder);
+    }
+    return ladder;
+  };
+
+  const frameOf = async (
+    backend: Backend<GpuContext>,
+    request: FrameRequest,
+  ): Promise<PhotonFrame | null> => {
     const inputs = inputsFrom(context.values);
-    const images = await renderBoth(backend, inputs);
+    const ladder = ladderFor(backend.kind);
+    const choice = ladder.pick(request);
+    const photons = choice.final
+      ? inputs.photons
+      : Math.min(
+          inputs.photons,
+          Math.max(PREVIEW_MIN_PHOTONS, Math.round(inputs.photons * choice.rung.value.fraction)),
+        );
+    // A rung that traces as many photons as the full picture (the CPU twin's cap) is it.
+    const traced = (n: number): number =>
+      backend.kind === 'gpu' ? n : Math.min(n, CPU_MAX_PHOTONS);
+    const final = choice.final || traced(photons) === traced(inputs.photons);
+    const start = performance.now();
+    const images = await renderBoth(
+      backend,
+      { ...inputs, photons },
+      undefined,
+      CPU_MAX_PHOTONS,
+      request.signal,
+      final ? 1 : choice.rung.value.pixelScale,
+    );
+    ladder.record(choice.index, performance.now() - start);
+    if (request.signal.aborted) return null;
     const grid = gridFor(inputs.radius);
+    const ref = await loadReference();
     return {
-      inputs,
+      inputs: { ...inputs, photons },
       images,
       pmError: rmse(images.photonMap, images.reference),
       ptError: rmse(images.pathTraced, images.reference),
       grid: { dims: grid.dims, cellSize: grid.cellSize },
-      referenceNote: REFERENCE_NOTE,
+      referenceNote: referenceNote(ref),
+      stage: final
+        ? { label: `${inputs.photons.toLocaleString('en-US')} photons`, pending: null }
+        : {
+            label: `Preview: ${photons.toLocaleString('en-US')} of ${inputs.photons.toLocaleString('en-US')} photons${choice.rung.value.pixelScale > 1 ? ', half resolution' : ''}, path tracing in the same time`,
+            pending: 'frame',
+          },
     };
   };
 
@@ -266,13 +306,19 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
   return {
     cpuNotice: `Showing the float64 CPU twin at ${CPU_SIZE.width}×${CPU_SIZE.height} pixels with at most ${CPU_MAX_PHOTONS} photons; the reference is the GPU reference averaged 2×2.`,
     build(stage) {
-      // The images map radiance v to grey √(v/top), so the bar's midpoint is top/4.
+      // The images map radiance v to grey √(v/top), so the bar's midpoint is top/4. The
+      // legend keeps to "0 ▬ top" (a longer label wrapped into the bar in a narrow
+      // panel); the caption says the scale is a square root.
       const greyScale = {
         gradient: 'linear-gradient(to right, #000, #fff)',
-        low: '0 (square-root scale)',
+        low: '0',
         top: { readout: 'radiance-scale' },
       };
-      const pm = imagePanel(pmCanvas, 'Photon mapping (volume radiance estimate)', greyScale);
+      const pm = imagePanel(
+        pmCanvas,
+        'Photon mapping (volume radiance estimate); grey ∝ √radiance, scale below',
+        greyScale,
+      );
       scaleTop = pm.top;
       stage.appendChild(
         imageFigure(
@@ -300,8 +346,9 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
     },
     // The GPU functions take the device; the kernel is linked once (kernel()).
     createRenderer: (gpu: GpuContext) => gpu,
-    renderGpu: (gpu) => frameOf({ kind: 'gpu', gpu, renderer: gpu }),
-    renderCpu: () => frameOf({ kind: 'cpu', reason: '' }),
+    renderGpu: (renderer, gpu, request) => frameOf({ kind: 'gpu', gpu, renderer }, request),
+    renderCpu: (request) => frameOf({ kind: 'cpu', reason: '' }, request),
+    refinement: (shown) => shown.stage,
     onCpuFallback: () => sweep?.cancel('stopped: the GPU was lost'),
     destroy: () => sweep?.cancel('stopped'),
     show({ inputs, images, pmError, ptError }) {

@@ -4,7 +4,8 @@
 // radiance estimate along camera rays; path tracing then gets the same time
 // (passes of PT_PASS_SPP paths per pixel until its accumulated time reaches the photon
 // map's). Both images show their RMSE against a converged path-traced reference
-// (public/photon-map/reference.bin, scripts/photon-map-reference.ts). The sweep plots
+// (public/photon-map/reference.bin, scripts/photon-map-reference.ts; the cost line
+// names neither: student-facing text carries no repository paths). The sweep plots
 // error against time for three series: photon mapping over N = 4096·n at the current
 // radius (its error stops falling once the bias of the radius dominates, so it gets
 // no power law, only its plateau: the error at the largest N and its change over the
@@ -16,6 +17,7 @@
 import { defineWidget } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
+import type { Refinement } from '../base/refinement.ts';
 import { PHOTON_MAP } from './schema.ts';
 import type { PhotonInputs } from './model.ts';
 
@@ -49,6 +51,8 @@ export interface PhotonFrame {
   grid: { dims: readonly number[]; cellSize: number };
   /** The reference's size and origin, for the cost line. */
   referenceNote: string;
+  /** A preview with a fraction of the photons (inputs.photons says how many), or the full picture. */
+  stage: Refinement;
 }
 
 /** The sweep's rows: written by the sweep (the view), not by a frame. */

@@ -15,6 +15,7 @@ import {
 } from '../../scene/accumulationView.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
+import { BackgroundRefinement } from '../../scene/backgroundRefinement.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene, type ResolvedScene } from '../../scene/load.ts';
@@ -23,6 +24,7 @@ import { GENERAL_CONDITIONS, plan, type Conditions, type Plan } from '../../scen
 import type { PassRenderer, PassTiming } from '../../scene/render.ts';
 import { parseScene } from '../../scene/validate.ts';
 import type { Backend } from '../base/backend.ts';
+import type { FrameRequest, Refinement } from '../base/refinement.ts';
 import { formatNumber } from '../base/format.ts';
 import {
   gradientCss,
@@ -179,9 +181,13 @@ export function createView(
   let views: { device: GPUDevice; image: AccumulationView; error: AccumulationView } | null = null;
   const kernelTimes = new Map<string, KernelTimes>();
   let remeasure = false;
+  /** Whether the last frame left work (image, reference or timing) for the next. */
+  let moreWork = false;
+  const background = new BackgroundRefinement<SingleScatterFrame>(context);
   const resolvedCache = new Map<string, Promise<ResolvedScene>>();
 
   const disposeRun = (): void => {
+    background.stop();
     run?.main.renderer.destroy();
     for (const snapshot of run?.snapshots ?? []) snapshot.image.destroy();
     run = null;
@@ -329,18 +335,22 @@ export function createView(
   /** Paints the run and gathers the frame (null: the run was replaced meanwhile). */
   const collect = async (
     current: Run,
-    reference: Progressive,
+    reference: Progressive | null,
     target: number,
     referenceTarget: number,
     times: KernelTimes | null,
+    stage: Refinement,
   ): Promise<SingleScatterFrame | null> => {
     const accumulation = current.main.renderer.accumulation;
-    const referenceAccumulation = reference.renderer.accumulation;
-    const referenceSamples = referenceAccumulation.samples;
-    const referenceDone = referenceSamples >= referenceTarget;
+    // Null in a preview whose scene has no reference yet (it is made after the preview).
+    const referenceAccumulation = reference?.renderer.accumulation ?? null;
+    const referenceSamples = referenceAccumulation?.samples ?? 0;
+    const referenceDone = referenceAccumulation !== null && referenceSamples >= referenceTarget;
     const started = generation;
     // One reduction: the readouts' numbers, and the RMSE against the finished reference.
-    const stats = await accumulation.statistics(referenceDone ? referenceAccumulation : undefined);
+    const stats = await accumulation.statistics(
+      referenceDone && referenceAccumulation ? referenceAccumulation : undefined,
+    );
     if (started !== generation) return null;
     // The error map's top colour: the largest channel-averaged standard error, rounded.
     const largest = stats.maxPixelStandardError;
@@ -348,7 +358,7 @@ export function createView(
     await paint(current, scale);
     if (started !== generation) return null;
     // Each snapshot against the reference once (again only if the reference grew).
-    if (referenceDone)
+    if (referenceDone && referenceAccumulation)
       for (const snapshot of current.snapshots) {
         if (snapshot.error?.referenceSamples === referenceSamples) continue;
         const against = await snapshot.image.statistics(referenceAccumulation);
@@ -383,6 +393,7 @@ export function createView(
       elapsedMs: current.main.elapsedMs,
       timing: current.main.timing,
       times,
+      stage,
     };
   };
 
@@ -393,6 +404,7 @@ export function createView(
   const frame = async (
     inputs: SingleScatterInputs,
     backend: Backend<GpuContext>,
+    request: Pick<FrameRequest, 'signal'>,
   ): Promise<SingleScatterFrame | null> => {
     const gpu = backend.kind === 'gpu';
     const width = gpu ? GPU_WIDTH : CPU_WIDTH;
@@ -431,6 +443,10 @@ export function createView(
     const current = run;
     const started = generation;
     let busy = false;
+    // The first frame of a run is its preview: one pass of the image and nothing else
+    // (no reference renderer to make, no reference pass, no kernel timing), so a new
+    // scene is on screen as soon as its kernel is compiled.
+    const preview = current.main.renderer.accumulation.samples === 0;
 
     // 1. The progressive image: one pass sized to the frame budget.
     if (current.main.renderer.accumulation.samples < target) {
@@ -449,9 +465,20 @@ export function createView(
       busy = true;
     }
 
+    // A new input stops the old scene here (its frame is dropped; the next draws the new one).
+    if (request.signal.aborted) return null;
+
     // 2. The reference (cached per scene): REFERENCE_FACTOR × the target, another seed.
     const referenceTarget = REFERENCE_FACTOR * target;
     let reference = references.get(key);
+    if (preview) {
+      if (backend.kind === 'gpu') warmGeneralKernel(backend.gpu);
+      const result = await collect(current, reference ?? null, target, referenceTarget, null, {
+        label: `Preview: ${current.main.renderer.accumulation.samples} of ${target} spp`,
+        pending: 'frame',
+      });
+      return started === generation ? result : null;
+    }
     if (!reference) {
       const resolved = await resolve(inputs, REFERENCE_SEED, width, height);
       const renderer = await makeRenderer(backend, resolved, plan(resolved.scene).conditions);
@@ -463,7 +490,7 @@ export function createView(
       reference = { renderer, perPass: 1, elapsedMs: 0, timing: renderer.timing };
       references.set(key, reference);
     }
-    if (reference.renderer.accumulation.samples < referenceTarget) {
+    if (reference.renderer.accumulation.samples < referenceTarget && !request.signal.aborted) {
       await step(reference, referenceTarget, busy ? budget : 2 * budget);
       if (started !== generation) return null;
       busy = true;
@@ -471,7 +498,7 @@ export function createView(
     const referenceDone = reference.renderer.accumulation.samples >= referenceTarget;
 
     // 3. Specialized against general kernel, once per scene (or on request), after the reference.
-    if (referenceDone && (remeasure || !kernelTimes.has(key))) {
+    if (referenceDone && (remeasure || !kernelTimes.has(key)) && !request.signal.aborted) {
       remeasure = false;
       context.setReadout('saved', 'timing both kernels…');
       const times = await timeKernels(inputs, backend, width, height);
@@ -485,20 +512,58 @@ export function createView(
       target,
       referenceTarget,
       kernelTimes.get(key) ?? null,
+      {
+        label: `${current.main.renderer.accumulation.samples} of ${target} spp${
+          reference.renderer.accumulation.samples >= referenceTarget
+            ? ''
+            : `, reference ${reference.renderer.accumulation.samples} of ${referenceTarget}`
+        }`,
+        pending: null,
+      },
     );
-    if (started !== generation) return null;
-    if (busy) context.scheduleRender();
+    if (started !== generation || request.signal.aborted) return null;
+    moreWork = busy;
     return result;
   };
 
-  const renderOn = async (backend: Backend<GpuContext>): Promise<SingleScatterFrame | null> => {
+  /** Devices whose general kernel (the timing's comparison) is compiled or compiling. */
+  const warmed = new WeakSet<GPUDevice>();
+  /**
+   * Compiles the general kernel in the background after the first picture: the kernel
+   * timing after the reference then does not stall a frame for the compiler.
+   */
+  const warmGeneralKernel = (gpu: GpuContext): void => {
+    if (warmed.has(gpu.device)) return;
+    warmed.add(gpu.device);
+    void GpuSceneRenderer.prepare(gpu.device, STATIC_KERNELS, GENERAL_CONDITIONS).catch(
+      () => undefined,
+    );
+  };
+
+  const renderOn = async (
+    backend: Backend<GpuContext>,
+    request: FrameRequest,
+  ): Promise<SingleScatterFrame | null> => {
     // Captured: the context's signal is a fresh one once the widget is destroyed.
     const signal = context.signal;
+    // The accumulation past the preview stops here (its frame in flight lands first).
+    await background.halt();
     try {
-      return await frame(inputsFrom(context.values), backend);
+      const inputs = inputsFrom(context.values);
+      const result = await frame(inputs, backend, request);
+      const current = run;
+      if (result?.stage.pending === null && moreWork) {
+        // The image, the reference and the kernel timing go on by themselves, a pass per
+        // frame, each reported without unsettling the widget.
+        background.start(
+          (stepSignal) => frame(inputs, backend, { signal: stepSignal }),
+          () => run === current && moreWork,
+        );
+      }
+      return result;
     } catch (error) {
-      // Destroyed mid-frame (its renderers released under it): not a GPU failure.
-      if (signal.aborted) return null;
+      // Destroyed mid-frame (its renderers released under it), or a stale frame given up.
+      if (signal.aborted || request.signal.aborted) return null;
       throw error;
     }
   };
@@ -580,8 +645,9 @@ export function createView(
     },
     // The scene renderers take the device; they are made per run and per reference.
     createRenderer: (gpu: GpuContext) => gpu,
-    renderGpu: (gpu) => renderOn({ kind: 'gpu', gpu, renderer: gpu }),
-    renderCpu: () => renderOn({ kind: 'cpu', reason: '' }),
+    renderGpu: (renderer, gpu, request) => renderOn({ kind: 'gpu', gpu, renderer }, request),
+    renderCpu: (request) => renderOn({ kind: 'cpu', reason: '' }, request),
+    refinement: (shown) => shown.stage,
     onCpuFallback: resetAll,
     destroy: resetAll,
     show(shown) {

@@ -12,6 +12,7 @@ import { defineWidget } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
 import type { PassTiming } from '../../scene/render.ts';
+import type { Refinement } from '../base/refinement.ts';
 import { SINGLE_SCATTER } from './schema.ts';
 
 /** Timed passes per kernel for the specialized-versus-general comparison (median). */
@@ -54,6 +55,8 @@ export interface SingleScatterFrame {
   timing: PassTiming;
   /** Null until both kernels were timed (after the reference). */
   times: KernelTimes | null;
+  /** The run's first frame is a preview (one pass); then the image accumulates. */
+  stage: Refinement;
 }
 
 function savedText(times: KernelTimes): { text: string; state: 'ok' | 'bad' } {

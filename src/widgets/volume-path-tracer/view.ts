@@ -11,6 +11,7 @@ import type { Accumulation, ImageStatistics } from '../../scene/accumulation.ts'
 import { AccumulationView, canvasForContext } from '../../scene/accumulationView.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
+import { BackgroundRefinement } from '../../scene/backgroundRefinement.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene } from '../../scene/load.ts';
@@ -18,6 +19,7 @@ import { packScene, sceneData } from '../../scene/pack.ts';
 import { plan, type Plan } from '../../scene/plan.ts';
 import type { PassRenderer, PassTiming } from '../../scene/render.ts';
 import type { Backend } from '../base/backend.ts';
+import { firstPictureBudget, type FrameRequest, type Refinement } from '../base/refinement.ts';
 import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { logLogSlope, mergeSeries, type SweepPoint } from '../base/sweep.ts';
@@ -33,6 +35,7 @@ import {
   sceneKey,
   type Budget,
   type PathTracerInputs,
+  type SceneChoice,
 } from './model.ts';
 import {
   ORDERS,
@@ -82,7 +85,10 @@ interface Run {
   images: Record<Order, Progressive>;
   plans: Record<Order, Plan>;
   mask: Uint8Array;
-  reference: ReferenceJob;
+  /** Made after the first picture (its kernels are the images' own, already compiled). */
+  reference: ReferenceJob | null;
+  /** False once the reader cancelled the reference before it was made. */
+  referenceWanted: boolean;
 }
 
 const COLOURS: Record<Order, string> = { single: '#d9822b', multiple: '#2b7bb9' };
@@ -93,6 +99,11 @@ const MAX_CACHED_REFERENCES = 8;
  * frames of seconds on a CPU WebGPU. Its size adapts to the measured cost per sample.
  */
 const REFERENCE_FRAME_MS = 120;
+/**
+ * Share of the first-picture budget (refinement.ts) the preview's passes may use: the
+ * rest is the display passes, the statistics and the page's own frame.
+ */
+const PREVIEW_SHARE = 0.6;
 
 /** Frees a cached reference: its renderers while unfinished, else its moments. */
 function destroyReference(job: ReferenceJob): void {
@@ -151,6 +162,7 @@ export function createView(
   let paused = false;
   let run: Run | null = null;
   const references = new Map<string, ReferenceJob>();
+  const background = new BackgroundRefinement<VolumePathTracerFrame>(context);
 
   const dropViews = (): void => {
     for (const order of ORDERS) views[order]?.view.destroy();
@@ -158,6 +170,7 @@ export function createView(
   };
 
   const discardRun = (): void => {
+    background.stop();
     if (!run) return;
     for (const order of ORDERS) {
       const image = run.images[order];
@@ -179,8 +192,12 @@ export function createView(
 
   const updateReferenceStatus = (): void => {
     if (!run || !referenceStatus || !referenceProgress || !referenceButton) return;
-    const job = run.reference;
     const target = run.budget.referenceSpp;
+    const job = run.reference ?? {
+      accumulations: { single: { samples: 0 }, multiple: { samples: 0 } },
+      done: false,
+      cancelled: !run.referenceWanted,
+    };
     const have = Math.min(job.accumulations.single.samples, job.accumulations.multiple.samples);
     referenceProgress.max = target;
     referenceProgress.value = job.done ? target : have;
@@ -194,6 +211,12 @@ export function createView(
   };
 
   const toggleReference = (): void => {
+    if (run && !run.reference) {
+      run.referenceWanted = !run.referenceWanted;
+      updateReferenceStatus();
+      if (run.referenceWanted) context.scheduleRender();
+      return;
+    }
     const job = run?.reference;
     if (!job || job.done) return;
     job.cancelled = !job.cancelled;
@@ -213,75 +236,98 @@ export function createView(
   const startRun = async (backend: Backend<GpuContext>, inputs: PathTracerInputs): Promise<Run> => {
     const budget = backend.kind === 'gpu' ? GPU_BUDGET : CPU_BUDGET;
     const key = `${backend.kind}|${sceneKey(inputs)}`;
-    const made: PassRenderer[] = [];
-    try {
-      const single = await makeRenderer(backend, inputs, 'single', budget, IMAGE_SEED);
-      made.push(single.renderer);
-      const multiple = await makeRenderer(backend, inputs, 'multiple', budget, IMAGE_SEED);
-      made.push(multiple.renderer);
-      let reference = references.get(key);
-      if (!reference) {
-        const refSingle = await makeRenderer(backend, inputs, 'single', budget, REFERENCE_SEED);
-        made.push(refSingle.renderer);
-        const refMultiple = await makeRenderer(backend, inputs, 'multiple', budget, REFERENCE_SEED);
-        reference = {
-          renderers: { single: refSingle.renderer, multiple: refMultiple.renderer },
-          accumulations: {
-            single: refSingle.renderer.accumulation,
-            multiple: refMultiple.renderer.accumulation,
-          },
-          done: false,
-          cancelled: false,
-          passSpp: 1,
-        };
-        references.set(key, reference);
-        trimReferences();
-      }
-      const mask = mediumMask(inputs, budget.width, budget.height);
-      single.renderer.accumulation.setMask(mask);
-      multiple.renderer.accumulation.setMask(mask);
-      const progressive = (renderer: PassRenderer): Progressive => ({
-        renderer,
-        accumulation: renderer.accumulation,
-        milliseconds: 0,
-        timing: renderer.timing,
-        lastPassMs: 0,
-        snapshots: [],
-      });
-      for (const order of ORDERS) {
-        const canvas = canvases[order];
-        if (canvas) {
-          canvas.width = budget.width;
-          canvas.height = budget.height;
-        }
-      }
-      return {
-        key,
-        inputs,
-        budget,
-        backend: backend.kind,
-        images: { single: progressive(single.renderer), multiple: progressive(multiple.renderer) },
-        plans: { single: single.plan, multiple: multiple.plan },
-        mask,
-        reference,
-      };
-    } catch (error) {
-      for (const r of made) r.destroy();
-      throw error;
+    // Both images' kernels link and compile side by side; the reference waits until the
+    // first picture is up (referenceFor), so a new scene shows something at once.
+    const made = await Promise.allSettled([
+      makeRenderer(backend, inputs, 'single', budget, IMAGE_SEED),
+      makeRenderer(backend, inputs, 'multiple', budget, IMAGE_SEED),
+    ]);
+    const failed = made.find((m) => m.status === 'rejected');
+    if (failed) {
+      for (const m of made) if (m.status === 'fulfilled') m.value.renderer.destroy();
+      throw failed.reason;
     }
+    const [single, multiple] = made.map(
+      (m) => (m as PromiseFulfilledResult<{ renderer: PassRenderer; plan: Plan }>).value,
+    ) as [{ renderer: PassRenderer; plan: Plan }, { renderer: PassRenderer; plan: Plan }];
+    const mask = mediumMask(inputs, budget.width, budget.height);
+    single.renderer.accumulation.setMask(mask);
+    multiple.renderer.accumulation.setMask(mask);
+    const progressive = (renderer: PassRenderer): Progressive => ({
+      renderer,
+      accumulation: renderer.accumulation,
+      milliseconds: 0,
+      timing: renderer.timing,
+      lastPassMs: 0,
+      snapshots: [],
+    });
+    for (const order of ORDERS) {
+      const canvas = canvases[order];
+      // Only on a change of size: setting it clears the canvas, and the old picture stays
+      // up until the new scene's first picture replaces it.
+      if (canvas && (canvas.width !== budget.width || canvas.height !== budget.height)) {
+        canvas.width = budget.width;
+        canvas.height = budget.height;
+      }
+    }
+    return {
+      key,
+      inputs,
+      budget,
+      backend: backend.kind,
+      images: { single: progressive(single.renderer), multiple: progressive(multiple.renderer) },
+      plans: { single: single.plan, multiple: multiple.plan },
+      mask,
+      reference: references.get(key) ?? null,
+      referenceWanted: true,
+    };
+  };
+
+  /** The run's reference job: the cached one, or a new one (two more renderers). */
+  const referenceFor = async (
+    backend: Backend<GpuContext>,
+    current: Run,
+  ): Promise<ReferenceJob | null> => {
+    if (current.reference || !current.referenceWanted) return current.reference;
+    const { inputs, budget, key } = current;
+    const made = await Promise.allSettled([
+      makeRenderer(backend, inputs, 'single', budget, REFERENCE_SEED),
+      makeRenderer(backend, inputs, 'multiple', budget, REFERENCE_SEED),
+    ]);
+    const failed = made.find((m) => m.status === 'rejected');
+    if (failed || run !== current) {
+      for (const m of made) if (m.status === 'fulfilled') m.value.renderer.destroy();
+      if (failed) throw failed.reason;
+      return null;
+    }
+    const [refSingle, refMultiple] = made.map(
+      (m) => (m as PromiseFulfilledResult<{ renderer: PassRenderer }>).value.renderer,
+    ) as [PassRenderer, PassRenderer];
+    const reference: ReferenceJob = {
+      renderers: { single: refSingle, multiple: refMultiple },
+      accumulations: { single: refSingle.accumulation, multiple: refMultiple.accumulation },
+      done: false,
+      cancelled: false,
+      passSpp: 1,
+    };
+    references.set(key, reference);
+    trimReferences();
+    current.reference = reference;
+    return reference;
   };
 
   const hasWork = (current: Run): boolean => {
     const job = current.reference;
     return (
       current.images.multiple.accumulation.samples < current.budget.maxSpp ||
+      !job ||
       (!job.done && !job.cancelled)
     );
   };
 
-  const referencePass = async (current: Run): Promise<void> => {
+  const referencePass = async (current: Run, signal: AbortSignal): Promise<void> => {
     const job = current.reference;
-    if (job.done || job.cancelled || !job.renderers) return;
+    if (!job || job.done || job.cancelled || !job.renderers) return;
     const { budget } = current;
     let spent = 0;
     let rendered = 0;
@@ -289,7 +335,7 @@ export function createView(
       const accumulation = job.accumulations[order];
       const passSpp = Math.min(job.passSpp, budget.referencePass);
       const samples = Math.min(passSpp, budget.referenceSpp - accumulation.samples);
-      if (samples <= 0) continue;
+      if (samples <= 0 || signal.aborted || !job.renderers) continue;
       const output = await job.renderers[order].renderPass(accumulation.samples, samples);
       spent += output.milliseconds;
       rendered += samples;
@@ -316,15 +362,16 @@ export function createView(
     }
   };
 
-  /** One frame: spp more samples per pixel in both images, and one reference pass. */
-  const frame = async (current: Run, sppPerFrame: number): Promise<void> => {
+  /** One frame's passes: `count` more samples per pixel in both images. */
+  const frame = async (current: Run, count: number, signal: AbortSignal): Promise<void> => {
     const { budget } = current;
     if (paused) return;
     for (const order of ORDERS) {
       const image = current.images[order];
       const have = image.accumulation.samples;
-      const samples = Math.min(sppPerFrame, budget.maxFrameSpp, budget.maxSpp - have);
-      if (samples <= 0) continue;
+      const samples = Math.min(count, budget.maxSpp - have);
+      // A new input stops the old scene between passes (its frame is dropped).
+      if (samples <= 0 || signal.aborted) continue;
       const output = await image.renderer.renderPass(have, samples);
       if (run !== current) return;
       image.milliseconds += output.milliseconds;
@@ -342,7 +389,6 @@ export function createView(
           error: null,
         });
     }
-    await referencePass(current);
   };
 
   /**
@@ -382,7 +428,7 @@ export function createView(
    */
   const referenceErrors = async (current: Run): Promise<ReferenceErrors | null> => {
     const job = current.reference;
-    if (!job.done) return null;
+    if (!job?.done) return null;
     const points: Record<Order, SweepPoint[]> = { single: [], multiple: [] };
     for (const order of ORDERS) {
       for (const snapshot of current.images[order].snapshots) {
@@ -475,14 +521,19 @@ export function createView(
     }
   };
 
-  /** Paints both images and gathers the frame's numbers (null: the run was replaced meanwhile). */
-  const collect = async (current: Run): Promise<VolumePathTracerFrame | null> => {
+  /**
+   * Paints both images and gathers the frame's numbers (null: the run was replaced
+   * meanwhile). The pictures go first; a refinement frame then adds one reference pass
+   * (never the first picture after an input: it waits for that).
+   */
+  const collect = async (
+    current: Run,
+    backend: Backend<GpuContext>,
+    withReference: boolean,
+    signal: AbortSignal,
+    stage: (samples: number) => Refinement,
+  ): Promise<VolumePathTracerFrame | null> => {
     const { images } = current;
-    const stats: Record<Order, ImageStatistics> = {
-      single: await images.single.accumulation.statistics(),
-      multiple: await images.multiple.accumulation.statistics(),
-    };
-    if (run !== current) return null;
     for (const order of ORDERS) {
       const image = images[order];
       await paint(order, current, image.accumulation);
@@ -495,6 +546,19 @@ export function createView(
         `${order === 'single' ? 'Single' : 'Multiple'} scattering image, ${image.accumulation.samples} samples per pixel`,
       );
     }
+    // Both reductions at once (64 bytes each): the readouts' numbers.
+    const [single, multiple] = await Promise.all([
+      images.single.accumulation.statistics(),
+      images.multiple.accumulation.statistics(),
+    ]);
+    const stats: Record<Order, ImageStatistics> = { single, multiple };
+    if (run !== current) return null;
+    if (withReference && !paused && !signal.aborted) {
+      await referenceFor(backend, current);
+      if (run !== current) return null;
+      await referencePass(current, signal);
+      if (run !== current) return null;
+    }
     const errors = await referenceErrors(current);
     if (run !== current) return null;
     const numbers = (order: Order) => ({
@@ -503,42 +567,140 @@ export function createView(
       lastPassMs: images[order].lastPassMs,
       stats: stats[order],
     });
+    const job = current.reference;
     return {
       inputs: current.inputs,
       budget: current.budget,
       paused,
       images: { single: numbers('single'), multiple: numbers('multiple') },
       timing: images.multiple.timing,
-      reference: { done: current.reference.done, cancelled: current.reference.cancelled },
+      reference: {
+        done: job?.done ?? false,
+        cancelled: job ? job.cancelled : !current.referenceWanted,
+      },
       errors,
+      stage: stage(images.multiple.accumulation.samples),
     };
   };
 
-  /** One frame on a backend: start a run for new parameters, add samples, and draw. */
-  const renderOn = async (backend: Backend<GpuContext>): Promise<VolumePathTracerFrame | null> => {
+  /** Measured pass time per sample per pixel of both images together, per backend (ms). */
+  const msPerSpp: Partial<Record<'gpu' | 'cpu', number>> = {};
+
+  /**
+   * Samples per pixel of the first picture after an input: as many of the frame's
+   * samples as the measured cost says fit the first-picture budget (one before anything
+   * was measured, and at least one).
+   */
+  const previewSpp = (kind: 'gpu' | 'cpu', perFrame: number): number => {
+    const cost = msPerSpp[kind];
+    if (cost === undefined) return 1;
+    const fits = Math.floor((PREVIEW_SHARE * firstPictureBudget(kind)) / cost);
+    return Math.max(1, Math.min(perFrame, fits));
+  };
+
+  /** Kernel variants compiled ahead for the other medium, once per device. */
+  const warmed = new WeakSet<GPUDevice>();
+  /**
+   * After the first settled picture, links and compiles the kernels of the other medium
+   * (grid or homogeneous) in the background: switching to it then draws its preview at
+   * once instead of waiting seconds for a compile (the pipelines are cached per device).
+   */
+  const warmOtherScene = (gpu: GpuContext, inputs: PathTracerInputs): void => {
+    if (warmed.has(gpu.device)) return;
+    warmed.add(gpu.device);
+    const other: SceneChoice = inputs.scene === 'cloud' ? 'sphere' : 'cloud';
+    const size = { width: 8, height: 8 };
+    for (const order of [1, 'unlimited'] as const) {
+      const conditions = plan(
+        buildScene({ ...inputs, scene: other }, order, size, 1, 1),
+      ).conditions;
+      void GpuSceneRenderer.prepare(gpu.device, STATIC_KERNELS, conditions).catch(() => undefined);
+    }
+  };
+
+  /**
+   * One frame on a backend: start a run for new parameters (its first frame a preview
+   * within the first-picture budget), add samples, draw, then a reference pass.
+   */
+  const renderOn = async (
+    backend: Backend<GpuContext>,
+    request: FrameRequest,
+  ): Promise<VolumePathTracerFrame | null> => {
     // Captured: the context's signal is a fresh one once the widget is destroyed.
     const signal = context.signal;
     const inputs = inputsFrom(context.values);
     const key = `${backend.kind}|${sceneKey(inputs)}`;
+    // The accumulation past full quality stops here (its frame in flight lands first).
+    await background.halt();
     try {
       if (run?.key !== key) {
         discardRun();
         run = await startRun(backend, inputs);
-        if (signal.aborted) {
+        if (signal.aborted || request.signal.aborted) {
           discardRun();
           return null;
         }
       }
       const current = run;
-      await frame(current, inputs.spp);
-      const result = await collect(current);
-      if (result && run === current && !paused && hasWork(current)) context.scheduleRender();
+      const result = await advance(backend, current, request.signal);
+      if (!result || request.signal.aborted) return null;
+      if (result.stage.pending === null) {
+        // Full quality: the images and the reference go on refining by themselves, a
+        // frame at a time, each reported without unsettling the widget.
+        background.start(
+          async (stepSignal) => {
+            if (run !== current) return null;
+            return advance(backend, current, stepSignal);
+          },
+          () => run === current && !paused && hasWork(current),
+        );
+        if (backend.kind === 'gpu') warmOtherScene(backend.gpu, inputs);
+      }
       return result;
     } catch (error) {
-      // Destroyed mid-frame (its renderers released under it): not a GPU failure.
-      if (signal.aborted) return null;
+      // Destroyed mid-frame (its renderers released under it), or a stale frame given up.
+      if (signal.aborted || request.signal.aborted) return null;
       throw error;
     }
+  };
+
+  /**
+   * One frame of a run: its first is the preview (as many samples as fit the
+   * first-picture budget); the next tops it up to a whole frame of `spp` samples (what
+   * one frame drew before previews existed: full quality), and from there each frame
+   * adds `spp` as the reader asked, with a reference pass after the pictures.
+   */
+  const advance = async (
+    backend: Backend<GpuContext>,
+    current: Run,
+    stale: AbortSignal,
+  ): Promise<VolumePathTracerFrame | null> => {
+    const { budget, inputs } = current;
+    const perFrame = Math.min(inputs.spp, budget.maxFrameSpp);
+    const have = current.images.multiple.accumulation.samples;
+    const preview = have === 0;
+    const count = preview ? previewSpp(backend.kind, perFrame) : perFrame - (have % perFrame);
+    await frame(current, count, stale);
+    if (stale.aborted || run !== current) return null;
+    const added = current.images.multiple.accumulation.samples - have;
+    const passMs = current.images.single.lastPassMs + current.images.multiple.lastPassMs;
+    if (added > 0 && passMs > 0) {
+      const measured = passMs / added;
+      const before = msPerSpp[backend.kind];
+      msPerSpp[backend.kind] = before === undefined ? measured : 0.5 * (before + measured);
+    }
+    const stage = (samples: number): Refinement => {
+      if (samples < perFrame && !paused)
+        return { label: `Preview: ${samples} of ${perFrame} spp`, pending: 'frame' };
+      const done = samples >= budget.maxSpp;
+      return {
+        label: done
+          ? `${samples} spp, done`
+          : `${samples} spp${paused ? ', paused' : `, accumulating to ${budget.maxSpp}`}`,
+        pending: null,
+      };
+    };
+    return collect(current, backend, !preview, stale, stage);
   };
 
   return {
@@ -626,8 +788,9 @@ export function createView(
     },
     // The scene renderers take the device; they are made per run (startRun).
     createRenderer: (gpu: GpuContext) => gpu,
-    renderGpu: (gpu) => renderOn({ kind: 'gpu', gpu, renderer: gpu }),
-    renderCpu: () => renderOn({ kind: 'cpu', reason: '' }),
+    renderGpu: (renderer, gpu, request) => renderOn({ kind: 'gpu', gpu, renderer }, request),
+    renderCpu: (request) => renderOn({ kind: 'cpu', reason: '' }, request),
+    refinement: (shown) => shown.stage,
     // A device loss or a failed GPU frame: the GPU run, references and pictures go.
     onCpuFallback: releaseAll,
     destroy: releaseAll,

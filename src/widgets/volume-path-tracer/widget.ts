@@ -15,6 +15,7 @@ import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
 import type { ImageStatistics } from '../../scene/accumulation.ts';
 import type { PassTiming } from '../../scene/render.ts';
+import type { Refinement } from '../base/refinement.ts';
 import type { SweepPoint } from '../base/sweep.ts';
 import type { Budget, PathTracerInputs } from './model.ts';
 import { VOLUME_PATH_TRACER } from './schema.ts';
@@ -50,6 +51,8 @@ export interface VolumePathTracerFrame {
   reference: { done: boolean; cancelled: boolean };
   /** Null until the reference is done. */
   errors: ReferenceErrors | null;
+  /** A preview (fewer samples than a frame's spp) or the accumulating image. */
+  stage: Refinement;
 }
 
 /** A fitted slope as the readout and the plot's legend write it. */
