@@ -320,7 +320,9 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     const refinement = this.view?.refinement?.(frame);
     const pending = refinement?.pending ?? null;
     this.dataset['stage'] = refinement?.label ?? 'full';
-    this.dataset['settled'] = pending === null ? 'true' : 'false';
+    // A frame rendered for inputs that have changed since is not the settled picture.
+    const stale = version !== undefined && version !== this.inputVersion;
+    this.dataset['settled'] = pending === null && !stale ? 'true' : 'false';
     this.readouts?.setStage(refinement?.label ?? '', pending !== null);
     if (pending === 'frame' && (version === undefined || version === this.inputVersion)) {
       this.refineNext = true;
