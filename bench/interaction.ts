@@ -70,6 +70,8 @@ const DRAG_INTERVAL_MS = 50;
 /** A widget's whole measurement (load, changes, drag) is abandoned after this long. */
 const RUN_TIMEOUT_MS = 330_000;
 const POLL_MS = 100;
+/** How long data-settled = "true" must hold (with no new frame) before it counts. */
+const CONFIRM_MS = 300;
 
 /**
  * Installed in the page once it has loaded (a string, not a function: tsx keeps
@@ -171,7 +173,12 @@ class Recording {
     for (;;) {
       await this.fetch();
       const outcome = judgeChange(this.log, t0, frames0, this.now, quietMs);
-      if (outcome.settled || this.now - t0 > capMs) return outcome;
+      // A frame for stale inputs (one that was in flight when a drag's last input came)
+      // can say settled until the next frame starts: data-settled must hold a moment.
+      const confirmed =
+        outcome.settled !== null &&
+        (outcome.settledBy === 'quiet' || this.now - outcome.settled.t >= CONFIRM_MS);
+      if (confirmed || this.now - t0 > capMs) return outcome;
       await new Promise((resolve) => setTimeout(resolve, POLL_MS));
     }
   }
