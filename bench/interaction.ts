@@ -258,6 +258,24 @@ async function drag(
   );
 }
 
+/** Iterations of the load probe's fixed loop. */
+const PROBE_ITERATIONS = 2_000_000;
+
+/**
+ * Milliseconds the page takes for a fixed arithmetic loop, once the widget has settled:
+ * how much of a core the page gets on this shared machine while the row was measured
+ * (compare rows and runs by it: it does not correct the times).
+ */
+async function loadProbe(page: Page): Promise<number> {
+  return page.evaluate((iterations) => {
+    const start = performance.now();
+    let sum = 0;
+    for (let i = 0; i < iterations; i++) sum += Math.sqrt(i);
+    const elapsed = performance.now() - start;
+    return sum > 0 ? elapsed : -1;
+  }, PROBE_ITERATIONS);
+}
+
 /** A wait that ran out: "> 120 s". */
 function beyond(capMs: number): string {
   return `> ${capMs / 1000} s`;
@@ -305,6 +323,7 @@ async function measureWidget(
     const unsettled = loaded.settled === null;
     const capMs = unsettled ? UNSETTLED_WAIT_MS : SETTLE_CAP_MS;
     const capLabel = unsettled ? ' (never settled after loading)' : '';
+    const probe = await loadProbe(page);
     const adapter =
       backend === 'gpu'
         ? await page.evaluate(async () => {
@@ -418,6 +437,7 @@ async function measureWidget(
               ? `after ${costs.length} of ${samples.length} changes`
               : 'no',
         changes: samples.length,
+        'load probe ms': probe,
         'settled by': `${loaded.settledBy === 'data-settled' ? 'data-settled' : 'quiet 1 s'}${unsettled ? `, not within ${LOAD_CAP_MS / 1000} s of loading` : ''}`,
       },
     };
@@ -521,6 +541,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
           `settled counts once data-settled = "true" has held ${CONFIRM_MS} ms; a widget not settled ${LOAD_CAP_MS / 1000} s after loading is measured all the same, waiting ${UNSETTLED_WAIT_MS / 1000} s for full quality after each input (the row says so).`,
           `drag: ${DRAG_INPUTS} input events ${DRAG_INTERVAL_MS} ms apart from the slider's min to max; long tasks (PerformanceObserver "longtask", ≥ 50 ms) from the first input until settled; total blocking = Σ (duration − 50 ms); frames during drag = frames shown in the drag's ${(DRAG_INPUTS * DRAG_INTERVAL_MS) / 1000} s; full quality after drag is from the last input.`,
           'frame cost reported: data-frame-ms (removed before each change) at full quality (the latest, where a change never settled), median, with data-frame-timer.',
+          `load probe: ms for a fixed loop of ${PROBE_ITERATIONS.toExponential(0)} square roots in the page after loading: larger means the machine was busier while that row was measured (compare rows and runs by it; it does not correct the times).`,
         ],
         rows,
       });
