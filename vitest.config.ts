@@ -14,7 +14,7 @@ export default defineConfig({
     ),
   ],
   test: {
-    include: ['tests/{reference,shaders,stability,book,grading,naga,widgets}/**/*.test.ts'],
+    include: ['tests/{reference,shaders,stability,book,grading,naga,widgets,bench}/**/*.test.ts'],
     pool: 'forks',
     setupFiles: ['tests/support/setupGpu.ts'],
     testTimeout: 30_000,

@@ -1,13 +1,16 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading,pages
-// runs a subset (`pages` measures the production build in dist/: run `npx vite build` first).
+// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading,pages,interaction
+// runs a subset (`pages` and `interaction` measure the production build in dist/, or in
+// --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
+// and --only-widgets=a,b, see bench/interaction.ts).
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
 import { benchCore } from './core.ts';
 import { benchEstimators } from './estimators.ts';
 import { benchGrading } from './grading.ts';
+import { benchInteraction, interactionOptionsFromArgs } from './interaction.ts';
 import { benchPages } from './pages.ts';
 import { benchPhotons } from './photons.ts';
 import { benchScenes } from './scenes.ts';
@@ -23,6 +26,7 @@ const only = process.argv
   ?.slice('--only='.length)
   .split(',');
 const wanted = (name: string): boolean => !only || only.includes(name);
+const dist = process.argv.find((a) => a.startsWith('--dist='))?.slice('--dist='.length);
 
 const device = await nodeDevice();
 const tables: BenchTable[] = [];
@@ -58,7 +62,9 @@ if (wanted('translucent'))
   );
 if (wanted('grading')) tables.push(await benchGrading(device, { repeats: quick ? 3 : 9 }));
 if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
-if (wanted('pages')) tables.push(...(await benchPages({ repeats: quick ? 1 : 3 })));
+if (wanted('pages')) tables.push(...(await benchPages({ dist, repeats: quick ? 1 : 3 })));
+if (wanted('interaction'))
+  tables.push(...(await benchInteraction(interactionOptionsFromArgs(process.argv, quick ? 3 : 5))));
 if (wanted('scenes'))
   tables.push(
     await benchScenes(device, {
