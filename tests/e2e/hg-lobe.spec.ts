@@ -178,7 +178,10 @@ test('invalid values are clamped and the widget says so', async ({ page }) => {
 test('presentation mode: F enters and fills the screen, number keys recall the presets, Esc leaves', async ({
   page,
 }) => {
-  const widget = await openSlide(page);
+  // On a chapter page: in the deck, F presents the whole slide with its title (deck.spec).
+  await page.goto(CHAPTER);
+  const widget = page.locator('sb-hg-lobe').first();
+  await waitForRender(widget);
   await widget.locator('input[type="range"]').first().focus();
   await page.keyboard.press('f');
   const shell = widget.locator('.sb-widget');
