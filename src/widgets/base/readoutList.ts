@@ -24,7 +24,7 @@ export class ReadoutList {
       this.values.set(key, value);
     }
     this.stage = document.createElement('p');
-    this.stage.className = 'sb-stage';
+    this.stage.className = 'sb-refinement';
     this.stage.dataset['readout'] = 'stage';
     this.stage.hidden = true;
     this.cost = document.createElement('p');
