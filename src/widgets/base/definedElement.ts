@@ -293,6 +293,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
           { kind: 'gpu', adapterDescription: backend.gpu.adapterDescription },
           version,
         );
+      else this.settleWithoutFrame(version);
       return;
     }
     const reason = backend.kind === 'cpu' ? backend.reason : 'this figure draws on the CPU';
@@ -306,6 +307,16 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       throw error;
     }
     if (frame !== null) this.report(frame, { kind: 'cpu', reason }, version);
+    else this.settleWithoutFrame(version);
+  }
+
+  /**
+   * A render that drew by itself and returned no frame (delta-tracking's comparison
+   * fills its own readouts): a view without refinement has nothing more to come, so the
+   * widget is settled once the render is done; a view with refinement reports when it is.
+   */
+  private settleWithoutFrame(version: number): void {
+    if (!this.view?.refinement && version === this.inputVersion) this.dataset['settled'] = 'true';
   }
 
   /**
