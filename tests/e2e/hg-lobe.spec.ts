@@ -28,6 +28,19 @@ async function lobeSlide(page: Page): Promise<number> {
   return number;
 }
 
+/** Opens the chapter's first hg-lobe with `state` in its hash (the deck refits its slide as a sweep's plot grows, so buttons move). */
+async function openInChapter(
+  page: Page,
+  state: Record<string, string> = {},
+  query = '',
+): Promise<Locator> {
+  const hash = Object.entries(state).map(([k, v]) => `hg-lobe-1.${k}=${v}`);
+  await page.goto(`${CHAPTER}${query}${hash.length ? `#${hash.join('&')}` : ''}`);
+  const widget = page.locator('sb-hg-lobe').first();
+  await waitForRender(widget);
+  return widget;
+}
+
 /** Opens the first hg-lobe slide with `state` (parameter → value) in its hash. */
 async function openSlide(page: Page, state: Record<string, string> = {}): Promise<Locator> {
   const slide = await lobeSlide(page);
@@ -362,7 +375,7 @@ test('the error-versus-time sweep plots the L1 error and its expectation, and ca
   page,
 }) => {
   const errors = trackErrors(page);
-  const widget = await openSlide(page, { g: '0.6', samples: '12' });
+  const widget = await openInChapter(page, { g: '0.6', samples: '12' });
   await expect(widget.locator('[data-readout="sweep"]')).toHaveText('run the sweep');
   await widget.getByRole('button', { name: /Run sweep/ }).click();
   await expect(widget).toHaveAttribute('data-sweeping', '');
