@@ -4,7 +4,7 @@
 // same hash). N shows the speaker notes, P presents the deck full screen with the
 // slide title kept; `deck.html?notes` is a presenter window that follows the slides
 // shown in any other window of the deck (BroadcastChannel).
-import { fitToBox, unfit } from './deck/fit.ts';
+import { fitToBox, stillFits, unfit } from './deck/fit.ts';
 
 /** Where the slide layout fits the figure to the screen; below it the deck scrolls. */
 const FITTED_LAYOUT = '(min-width: 900px) and (min-height: 560px)';
@@ -84,16 +84,37 @@ export function setupDeck(): void {
     fittedSizes = sizesOf(figure);
   };
   let fitFrame = 0;
+  let contentTimer: ReturnType<typeof setTimeout> | undefined;
   const scheduleFit = (): void => {
     cancelAnimationFrame(fitFrame);
+    clearTimeout(contentTimer);
     fitFrame = requestAnimationFrame(() => {
       const figure = figureOf(slides[index]);
       if (figure && sizesOf(figure) !== fittedSizes) fit();
     });
   };
-  // Refit when the window changes or the figure's contents do (a widget being defined,
-  // a notice, readouts filled in); a fit that changes nothing reports no new size.
-  const observer = new ResizeObserver(scheduleFit);
+  // A change of the figure's contents (a widget being defined, a notice, readouts filled
+  // in, a sweep's plot growing) refits only once the contents have held still for a
+  // moment, and only if the current layout no longer fits: refitting on every frame of
+  // a refinement or a sweep moved the controls under the pointer (a Cancel button
+  // never held still long enough to be clicked).
+  const CONTENT_SETTLE_MS = 400;
+  const scheduleContentFit = (): void => {
+    clearTimeout(contentTimer);
+    contentTimer = setTimeout(() => {
+      const figure = figureOf(slides[index]);
+      if (!figure || sizesOf(figure) === fittedSizes) return;
+      if (fitted.matches && stillFits(...figure)) fittedSizes = sizesOf(figure);
+      else fit();
+    }, CONTENT_SETTLE_MS);
+  };
+  // The box (the room the slide leaves the figure) changes with the window, the notes
+  // or presentation mode: that refits on the next frame. Its contents: see above.
+  const observer = new ResizeObserver((entries) => {
+    const figure = figureOf(slides[index]);
+    if (figure && entries.some((entry) => entry.target === figure[1])) scheduleFit();
+    else scheduleContentFit();
+  });
   for (const slide of slides) {
     const figure = figureOf(slide);
     if (figure) {

@@ -103,6 +103,91 @@ for (const [width, height] of [
   });
 }
 
+test("controls hold still while a widget's contents change, and a slide that outgrows its room is refitted", async ({
+  page,
+}) => {
+  await page.setViewportSize({ width: 1280, height: 720 });
+  await page.goto('/deck.html');
+  // A widget slide the fit had to shrink (zoom < 1) once its widget has drawn: there,
+  // any growth of the contents overflows, and refitting at once on every change moved
+  // the controls under the pointer during a sweep or a refinement. The sky's slide is
+  // one (its panorama, probes and readouts fill the slide at 1280×720).
+  const slide = await page.evaluate(() => {
+    const slides = [...document.querySelectorAll('.deck-slide')];
+    return slides.findIndex((s) => s.querySelector('sb-rayleigh-sky')) + 1;
+  });
+  expect(slide, 'a slide with the sky').toBeGreaterThan(0);
+  await page.evaluate((n) => (location.hash = `slide=${n}`), slide);
+  await waitForRender(page.locator(`#slide-${slide} sb-rayleigh-sky`));
+  await expect
+    .poll(() => page.locator(`#slide-${slide}`).getAttribute('data-fit'))
+    .toMatch(/^fits zoom=0\.\d+/);
+  await page.waitForTimeout(600);
+  const readouts = page.locator(`#slide-${slide} .sb-readout`);
+  const controls = page.locator(`#slide-${slide} .sb-controls`);
+  const fitBefore = await page.locator(`#slide-${slide}`).getAttribute('data-fit');
+  // Contents that come and go every 70 ms for about a second, as a plot's legend or a stage line
+  // does: the controls must not move in any frame.
+  const moved = await page.evaluate(
+    async ({ selector, controlsSelector }) => {
+      const host = document.querySelector<HTMLElement>(selector);
+      const controls = document.querySelector<HTMLElement>(controlsSelector);
+      if (!host || !controls) return ['missing'];
+      const start = controls.getBoundingClientRect();
+      const moves: string[] = [];
+      const check = (): void => {
+        const now = controls.getBoundingClientRect();
+        if (Math.abs(now.top - start.top) > 0.5 || Math.abs(now.left - start.left) > 0.5)
+          moves.push(`${Math.round(now.left)},${Math.round(now.top)}`);
+      };
+      const extra = document.createElement('div');
+      extra.style.height = '40px';
+      let toggles = 0;
+      // Positions are read before every toggle and on every animation frame (a busy
+      // software GPU may hold frames back, so the timer carries the test).
+      let sampling = true;
+      const sample = (): void => {
+        check();
+        if (sampling) requestAnimationFrame(sample);
+      };
+      requestAnimationFrame(sample);
+      await new Promise<void>((resolve) => {
+        const timer = setInterval(() => {
+          check();
+          if (extra.isConnected) extra.remove();
+          else host.append(extra);
+          toggles += 1;
+          if (toggles >= 16) {
+            clearInterval(timer);
+            resolve();
+          }
+        }, 70);
+      });
+      sampling = false;
+      extra.remove();
+      check();
+      return moves;
+    },
+    { selector: `#slide-${slide} .sb-readout`, controlsSelector: `#slide-${slide} .sb-controls` },
+  );
+  expect(moved).toEqual([]);
+  // Contents that settle back where they were keep the layout.
+  await page.waitForTimeout(700);
+  expect(await page.locator(`#slide-${slide}`).getAttribute('data-fit')).toBe(fitBefore);
+  // Contents that grow for good are refitted once they hold still.
+  await readouts.evaluate((host) => {
+    const extra = document.createElement('div');
+    extra.style.height = '24px';
+    extra.className = 'grown';
+    host.append(extra);
+  });
+  await expect
+    .poll(() => page.locator(`#slide-${slide}`).getAttribute('data-fit'))
+    .not.toBe(fitBefore);
+  expect(await page.locator(`#slide-${slide}`).getAttribute('data-fit')).toMatch(/^fits/);
+  await expect(controls).toBeInViewport({ ratio: 1 });
+});
+
 test('the keyboard, the buttons and the slide number move between slides, and say so', async ({
   page,
 }) => {

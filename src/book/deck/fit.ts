@@ -91,6 +91,21 @@ export function fitToBox(content: HTMLElement, box: HTMLElement): Fit {
   return { ...last, fits: false };
 }
 
+/**
+ * Whether `content`, laid out as it is now, still fits `box` (nothing is changed). The
+ * deck keeps a layout that still fits when only the figure's contents change, so that
+ * controls do not move under the pointer while a widget refines or a sweep runs.
+ */
+export function stillFits(content: HTMLElement, box: HTMLElement): boolean {
+  const available = box.getBoundingClientRect();
+  if (available.height <= 0) return false;
+  const used = content.getBoundingClientRect();
+  const sideways = content.scrollWidth - content.clientWidth - 1;
+  return (
+    used.height <= available.height + 0.5 && used.width <= available.width + 0.5 && sideways <= 0
+  );
+}
+
 /** Removes a fit (narrow screens, where the deck scrolls like a page instead). */
 export function unfit(content: HTMLElement): void {
   content.style.zoom = '';
