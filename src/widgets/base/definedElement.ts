@@ -36,6 +36,7 @@ class Canvas implements ManagedCanvas {
     const canvas = document.createElement('canvas');
     canvas.className = this.options.className ?? 'sb-canvas';
     canvas.setAttribute('role', 'img');
+    canvas.setAttribute('aria-label', this.options.label ?? 'Picture (being drawn)');
     canvas.width = this.options.width;
     canvas.height = this.options.height;
     return canvas;

@@ -25,6 +25,11 @@ export interface CanvasOptions {
   height: number;
   /** Class of the canvas element; default `sb-canvas`. */
   className?: string;
+  /**
+   * Its text alternative until the view describes what it drew (a canvas with
+   * role="img" and no name fails WCAG 1.1.1 while the first picture is on its way).
+   */
+  label?: string;
 }
 
 /** What the base element offers a view. */
