@@ -90,6 +90,20 @@ export async function waitForRender(widget: Locator, count = 1): Promise<void> {
   await waitForSettled(widget);
 }
 
+/**
+ * Scrolls a widget into view and waits for its first picture only (a preview may still
+ * be refining): for checks of the page around it (accessibility, layout) that do not read
+ * its final numbers, and should not pay for its full refinement on a software GPU.
+ */
+export async function waitForPicture(widget: Locator): Promise<void> {
+  await widget.scrollIntoViewIfNeeded();
+  await expect
+    .poll(async () => Number((await widget.getAttribute('data-rendered')) ?? '0'), {
+      timeout: 30_000,
+    })
+    .toBeGreaterThanOrEqual(1);
+}
+
 /** Waits until the widget shows full quality for its current inputs (no preview, no job pending). */
 export async function waitForSettled(widget: Locator, timeout = 45_000): Promise<void> {
   await expect
