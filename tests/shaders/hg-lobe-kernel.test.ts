@@ -29,10 +29,21 @@ function inputs(g: number, samplesExponent: number, seed: number): HgLobeInputs 
   };
 }
 
+// Linked once per file, and each (g, N, seed) sampled once: the chi-square and the
+// mean-cosine tests read two different statistics of the same 2^18 samples, which is
+// as valid as two draws and halves the file's GPU work on a software adapter.
+let linked: Promise<string> | undefined;
+const histograms = new Map<string, ReturnType<typeof sampleHistogramGpu>>();
 async function gpuHistogram(input: HgLobeInputs) {
-  const device = await nodeDevice();
-  const code = await linkLibraryKernel(SHADER_LIBRARY, 'kernels/hg-lobe.wesl');
-  return sampleHistogramGpu(device, code, input, polarLayout(input, 960, 480));
+  const key = `${input.g}/${input.sampleCount}/${input.seed}`;
+  let histogram = histograms.get(key);
+  if (!histogram) {
+    linked ??= linkLibraryKernel(SHADER_LIBRARY, 'kernels/hg-lobe.wesl');
+    const [device, code] = await Promise.all([nodeDevice(), linked]);
+    histogram = sampleHistogramGpu(device, code, input, polarLayout(input, 960, 480));
+    histograms.set(key, histogram);
+  }
+  return histogram;
 }
 
 // Asymmetries of chapter 3 and the extremes the widget allows.
@@ -70,7 +81,7 @@ describe('the GPU sampler draws the HG distribution (physics.md §2.4)', () => {
     });
 
     it(`g = ${g}: the GPU mean cosine is g within 5 standard errors (physics.md §2.2, ⟨μ⟩ = g)`, async () => {
-      const input = inputs(g, 18, 13);
+      const input = inputs(g, 18, 11);
       const stats = meanCosine(await gpuHistogram(input), input.g);
       expect(Math.abs(stats.zScore)).toBeLessThan(5);
     });
