@@ -43,6 +43,8 @@
 
 import { directionAroundAxis, type Vec3 } from './directions.ts';
 
+export type { Vec3 };
+
 /** A complex number as a pair: [real part, imaginary part]. */
 export type Complex = readonly [number, number];
 
@@ -531,16 +533,26 @@ export function phaseTableToF32(table: PhaseTable): PhaseTable {
 
 const clamp = (v: number, lo: number, hi: number): number => Math.min(Math.max(v, lo), hi);
 
-/** Index k of the interval [node k, node k+1] holding 1 − μ (bisection on the nodes). */
-function intervalOf(table: PhaseTable, oneMinusMu: number): number {
+/** Largest k < K with `values[k] ≤ v` (bisection; values non-decreasing). */
+function bisect(values: Float64Array, v: number): number {
   let lo = 0;
-  let hi = table.oneMinusMu.length - 1;
+  let hi = values.length - 1;
   while (hi - lo > 1) {
     const mid = (lo + hi) >> 1;
-    if (table.oneMinusMu[mid]! <= oneMinusMu) lo = mid;
+    if (values[mid]! <= v) lo = mid;
     else hi = mid;
   }
   return lo;
+}
+
+/** The interval k whose nodes bracket 1 − μ: the largest k < K with 1 − μ_k ≤ oneMinusMu. */
+export function phaseTableInterval(table: PhaseTable, oneMinusMu: number): number {
+  return bisect(table.oneMinusMu, oneMinusMu);
+}
+
+/** The interval k whose CDF values bracket ξ: the largest k < K with C_k ≤ ξ. */
+export function phaseTableCdfInterval(table: PhaseTable, xi: number): number {
+  return bisect(table.cdf, xi);
 }
 
 /**
@@ -553,7 +565,7 @@ export function phaseTabulatedEvalTerms(
   onePlusMu: number,
 ): number {
   const t = clamp(oneMinusMu, 0, 2);
-  const k = intervalOf(table, t);
+  const k = phaseTableInterval(table, t);
   const lowerT = table.oneMinusMu[k]!;
   const upperT = table.oneMinusMu[k + 1]!;
   let w: number;
@@ -584,13 +596,7 @@ export function phaseTabulatedEval(table: PhaseTable, mu: number): number {
  */
 export function phaseTabulatedSampleMu(table: PhaseTable, xi: number): TabulatedMuSample {
   const u = clamp(xi, 0, 1);
-  let lo = 0;
-  let hi = table.cdf.length - 1;
-  while (hi - lo > 1) {
-    const mid = (lo + hi) >> 1;
-    if (table.cdf[mid]! <= u) lo = mid;
-    else hi = mid;
-  }
+  const lo = phaseTableCdfInterval(table, u);
   const mass = table.cdf[lo + 1]! - table.cdf[lo]!;
   const r = mass > 0 ? clamp((u - table.cdf[lo]!) / mass, 0, 1) : 0;
   const a = table.pdf[lo]!;
