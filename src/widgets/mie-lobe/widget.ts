@@ -133,5 +133,7 @@ export const widget = defineWidget<MieLobeFrame>({
       chapter: '03-phase-functions-and-in-scattering',
     },
   ],
+  // After the sky in the deck, as Mie follows Rayleigh in the chapter.
+  deckOrder: 2,
   load: () => import('./view.ts'),
 });
