@@ -112,6 +112,12 @@ const Camera = /* @__PURE__ */ struct('Camera', 80, 16, {
   halfExtent: [64, vec2f],
   imageSize: [72, vec2f],
 });
+const PhaseTable = /* @__PURE__ */ struct('PhaseTable', 8208, 4, {
+  oneMinusMu: [0, /* @__PURE__ */ array(f32, 513, 4)],
+  onePlusMu: [2052, /* @__PURE__ */ array(f32, 513, 4)],
+  pdf: [4104, /* @__PURE__ */ array(f32, 513, 4)],
+  cdf: [6156, /* @__PURE__ */ array(f32, 513, 4)],
+});
 const vec3u = { kind: 'vector', scalar: 'u32', length: 3, size: 12, align: 16 } as const;
 const PhotonParams = /* @__PURE__ */ struct('PhotonParams', 208, 16, {
   boxMin: [0, vec3f],
@@ -378,6 +384,9 @@ export const hgLobeKernel = { Histogram: Histogram, HgLobeParams: HgLobeParams }
 /** Bound structs of kernels/inverse-render.wesl. */
 export const inverseRenderKernel = { InverseParams: InverseParams, Camera: Camera };
 
+/** Bound structs of kernels/mie-lobe.wesl. */
+export const mieLobeKernel = { PhaseTable: PhaseTable };
+
 /** Bound structs of kernels/photon-map.wesl. */
 export const photonMapKernel = { PhotonParams: PhotonParams };
 
@@ -434,6 +443,7 @@ export const KERNEL_LAYOUTS = {
   'kernels/hg-lobe-3d.wesl': hgLobe3dKernel,
   'kernels/hg-lobe.wesl': hgLobeKernel,
   'kernels/inverse-render.wesl': inverseRenderKernel,
+  'kernels/mie-lobe.wesl': mieLobeKernel,
   'kernels/photon-map.wesl': photonMapKernel,
   'kernels/rayleigh-sky.wesl': rayleighSkyKernel,
   'kernels/raymarch-steps.wesl': raymarchStepsKernel,

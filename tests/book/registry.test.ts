@@ -63,7 +63,7 @@ describe('widget registry', () => {
     expect(DECK).toEqual(deckFrom(WIDGETS));
     const chapters = DECK.map((slide) => slide.chapter);
     expect(chapters).toEqual([...chapters].sort());
-    // Chapter 3 shows the phase function before the sky, chapter 10 the path tracer
+    // Chapter 3 shows the phase function before the sky and the sky before Mie, chapter 10 the path tracer
     // before photon mapping, chapter 11 the dipole before the translucent sphere.
     const order = (chapter: string): string[] => [
       ...new Set(
@@ -72,7 +72,7 @@ describe('widget registry', () => {
         ),
       ),
     ];
-    expect(order('03')).toEqual(['hg-lobe', 'rayleigh-sky']);
+    expect(order('03')).toEqual(['hg-lobe', 'rayleigh-sky', 'mie-lobe']);
     expect(order('10')).toEqual(['volume-path-tracer', 'photon-map']);
     expect(order('11')).toEqual(['dipole-profile', 'translucent-render']);
   });

@@ -28,6 +28,7 @@ const NON_DEFAULT: Readonly<Record<string, readonly [string, string] | null>> = 
   'single-scatter': ['sigma-s', '3'],
   'volume-path-tracer': ['optical-thickness', '1'],
   'photon-map': ['radius', '0.2'],
+  'mie-lobe': ['log-radius', '-1.5'],
   exercise: null,
 };
 

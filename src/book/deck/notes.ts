@@ -44,6 +44,16 @@ export const SPEAKER_NOTES: Readonly<Record<SlideKey, string>> = {
     'Log radius, so the backward tail shows: p(0°) = 0.796 against p(180°) = 0.0124, a factor 64. Turn ' +
     'the 3D lobe with the arrow keys (click it first). Point at the χ² of the samples against the closed ' +
     'form; if time allows run the sweep: L1 error ∝ N^−½.',
+  'mie-lobe/Mie scattering: a fog droplet':
+    'A 1 µm water droplet in green light, $x = 2\\pi r/\\lambda \\approx 11$. Point at the log plot: the ' +
+    'Lorenz–Mie lobe (orange, drawn on the GPU from the tabulated phase function) is a narrow forward ' +
+    'peak with ripples and a raised back (the glory); HG with the same $g$ (blue, dashed) has neither. ' +
+    'Point at “HG with the same g: error”: the backscatter ratio is far from 1. Press 5 for a molecule: ' +
+    'the lobe becomes Rayleigh’s $1 + \\cos^2\\theta$.',
+  'mie-lobe/Why clouds are white':
+    'A 10 µm cloud droplet: point at “Colour of the scattered light”, R : G : B ≈ 1 : 1 : 1, because ' +
+    '$Q_{sca} \\to 2$ once $x \\gg 1$ (the extinction paradox). Drag the radius down to 0.01 µm: the ratio ' +
+    'turns to about $(550/440)^4 \\approx 2.4$ for blue — the sky. Same water, different size.',
   'rayleigh-sky/Why the sky is blue':
     'Sun at 60°. Point at “Zenith blue/red”: about 4.5, the $\\lambda^{-4}$ law of Rayleigh scattering. ' +
     'Single scattering only: no ozone, no aerosols, no multiple scattering (the widget says so). Press 4 ' +
