@@ -12,7 +12,7 @@ export const MIE_LOBE: WidgetEntry = {
     {
       kind: 'number',
       name: 'log-radius',
-      label: 'Radius r (log₁₀ of µm)',
+      label: 'Radius r, decimal log',
       symbol: 'log₁₀ r',
       unit: 'log₁₀ µm',
       min: -2,
