@@ -119,7 +119,10 @@ export interface IrradianceSamples {
   irradiance: Float64Array;
 }
 
-export function irradianceSamples(scene: TranslucentScene, count: number): IrradianceSamples {
+export function irradianceSamples(
+  scene: Pick<TranslucentScene, 'radius' | 'toLight' | 'eta' | 'irradiance'>,
+  count: number,
+): IrradianceSamples {
   const positions = new Float64Array(3 * count);
   const irradiance = new Float64Array(count);
   for (let i = 0; i < count; i++) {

@@ -59,11 +59,20 @@ export class TranslucentKernels {
     };
   }
 
-  /** Pass 2 of Jensen & Buhler on the GPU with threshold ε (octree built on the CPU). */
-  async gather(scene: TranslucentScene, octree: Octree, epsilon: number): Promise<GatherImage> {
+  /**
+   * Pass 2 of Jensen & Buhler on the GPU with threshold ε (octree built on the CPU).
+   * `packed` is packOctree(octree) where the caller has it already (the widget packs in
+   * its worker); otherwise it is packed here, once per octree.
+   */
+  async gather(
+    scene: TranslucentScene,
+    octree: Octree,
+    epsilon: number,
+    packed?: { nodes: Uint32Array; samples: Uint32Array },
+  ): Promise<GatherImage> {
     const code = await linkLibraryKernel(this.library, 'kernels/translucent-gather.wesl');
     if (this.packedFor !== octree || !this.packed) {
-      this.packed = packOctree(octree);
+      this.packed = packed ?? packOctree(octree);
       this.packedFor = octree;
     }
     const pixels = scene.size * scene.size;

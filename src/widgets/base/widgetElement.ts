@@ -21,6 +21,7 @@ import {
   writeWidgetState,
 } from './urlState.ts';
 import { snapshotCanvases } from './print.ts';
+import { ThrottledWriter } from './throttledWriter.ts';
 import { embedHeight, embedUrl, fullState, iframeSnippet } from './embedCode.ts';
 import { siteUrl } from './siteUrl.ts';
 
@@ -138,6 +139,8 @@ export abstract class WidgetElement extends HTMLElement {
 
   /** Off the page: stop observing and drop a requested frame (connectedCallback resumes). */
   disconnectedCallback(): void {
+    // A deferred URL write of a drag is not lost when the widget goes.
+    this.stateWriter.flush();
     connectedWidgets.delete(this);
     this.observer?.disconnect();
     this.observer = null;
@@ -381,8 +384,12 @@ export abstract class WidgetElement extends HTMLElement {
     return changed;
   }
 
+  /** URL writes, at most one per STATE_WRITE_INTERVAL_MS while a slider is dragged. */
+  private readonly stateWriter = new ThrottledWriter();
+
   private saveState(): void {
-    writeWidgetState(this.widgetId, this.stateEntries());
+    // The entries are read when the write runs, so a deferred write has the newest state.
+    this.stateWriter.write(() => writeWidgetState(this.widgetId, this.stateEntries()));
   }
 
   /**

@@ -19,6 +19,13 @@ import { ReadoutList } from '../base/readoutList.ts';
 import { SweepControls, type SweepPoint } from '../base/sweep.ts';
 import { logLogSlope } from '../../statistics/regression.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
+import { LadderFamily } from '../base/ladderFamily.ts';
+import {
+  CPU_FIRST_PICTURE_MS,
+  GPU_FIRST_PICTURE_MS,
+  type FrameRequest,
+  type Refinement,
+} from '../base/refinement.ts';
 import {
   CALIBRATION_RUNS,
   CALIBRATION_SPP,
@@ -55,6 +62,7 @@ import {
   type TrackingImage,
   type TrackingInputs,
 } from './model.ts';
+import { sampleRungs } from './stages.ts';
 import { MAJORANT_NAMES, type TrackingFrame } from './widget.ts';
 
 const COMPARE_ROWS = [
@@ -254,32 +262,71 @@ class DeltaTrackingView implements WidgetView<TrackingFrame, DeltaTrackingGpu> {
     return new DeltaTrackingGpu(gpu);
   }
 
-  renderGpu(renderer: DeltaTrackingGpu, gpu: GpuContext): Promise<TrackingFrame | null> {
-    return this.renderOn({ kind: 'gpu', gpu, renderer });
+  renderGpu(
+    renderer: DeltaTrackingGpu,
+    gpu: GpuContext,
+    request: FrameRequest,
+  ): Promise<TrackingFrame | null> {
+    return this.renderOn({ kind: 'gpu', gpu, renderer }, request);
   }
 
-  renderCpu(): Promise<TrackingFrame | null> {
-    return this.renderOn({ kind: 'cpu', reason: '' });
+  renderCpu(request: FrameRequest): Promise<TrackingFrame | null> {
+    return this.renderOn({ kind: 'cpu', reason: '' }, request);
   }
 
-  /** The single view's frame; the comparison is a long job that reports itself (null). */
-  private async renderOn(backend: Backend<DeltaTrackingGpu>): Promise<TrackingFrame | null> {
+  /**
+   * The single view's frames are staged (stages.ts): the base follows their refinement.
+   * A getter, because the comparison draws by itself and returns no frame, and the base
+   * settles a frameless render only for a view without refinement (definedElement.ts).
+   */
+  get refinement(): ((frame: TrackingFrame) => Refinement | undefined) | undefined {
+    if (inputsFrom(this.context.values).view === 'compare') return undefined;
+    return (frame) => frame.refinement;
+  }
+
+  /** Per backend, the ladders of samples per pixel, one per spp (ladderFamily.ts). */
+  private readonly ladders = {
+    gpu: new LadderFamily<number>(GPU_FIRST_PICTURE_MS),
+    cpu: new LadderFamily<number>(CPU_FIRST_PICTURE_MS),
+  };
+
+  /**
+   * The single view's frame at this stage's samples per pixel (the first of them after
+   * an input: the same streams, so a stage refines the last); the comparison is a long
+   * job that reports itself (null).
+   */
+  private async renderOn(
+    backend: Backend<DeltaTrackingGpu>,
+    request: FrameRequest,
+  ): Promise<TrackingFrame | null> {
     const inputs = inputsFrom(this.context.values);
     this.showView(inputs.view);
     if (inputs.view === 'compare') {
       await this.renderCompare(inputs, backend);
       return null;
     }
-    const { image, exact, milliseconds, timing } = await this.frame(backend, inputs, inputs.spp);
+    const family = this.ladders[backend.kind];
+    const ladder = family.get(String(inputs.spp), () => sampleRungs(inputs.spp));
+    const choice = ladder.pick(request);
+    const started = performance.now();
+    const { image, exact, milliseconds, timing } = await this.frame(
+      backend,
+      inputs,
+      choice.rung.value,
+    );
+    // The ladder learns the stage's whole time (read-back and statistics too).
     const variance = sampleVariance(image);
+    const stats = imageStatistics(image, exact, variance);
+    family.record(ladder, choice, performance.now() - started);
     return {
       inputs,
       image,
       variance,
-      stats: imageStatistics(image, exact, variance),
+      stats,
       estimatorName: nameOf(inputs.estimator),
       milliseconds,
       timing,
+      refinement: ladder.refinement(choice),
     };
   }
 

@@ -8,6 +8,7 @@
 // measured cost per sample, compare.ts), and sweeps all five into one log–log
 // plot of RMSE against time with each curve's fitted slope. The comparison is a
 // long job with readouts of its own (view.ts); the rows below are the single view's.
+import type { Refinement } from '../base/refinement.ts';
 import { defineWidget, type FrameCost } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
@@ -27,6 +28,8 @@ export interface TrackingFrame extends FrameCost {
   variance: Float64Array;
   stats: ImageStatistics;
   estimatorName: string;
+  /** Which stage of the refinement (fewer samples of the same streams first), if staged. */
+  refinement?: Refinement;
 }
 
 /** The mean bias is significant at 5 SE (the book's threshold for "biased", physics.md §4.5). */

@@ -1,12 +1,14 @@
 // CPU backend of <sb-dipole-profile>, used without WebGPU or after a device loss: the
-// curves from the float64 twins (model.ts), the disc painted pixel by pixel into a 2D
-// canvas at reduced resolution, and the Monte Carlo replayed by the twin batch by
-// batch, yielding to the page between slices so that a long run never freezes it.
+// curves from the float64 twins (model.ts) and the disc's pixels at reduced resolution,
+// both computed in the compute worker (jobs.ts) and put on the page here, and the Monte
+// Carlo replayed by the twin batch by batch, yielding to the page between slices so
+// that a long run never freezes it.
 import { runSlabCpuBatches, type SlabBatches, type SlabRun } from '../../subsurface/slabKernel.ts';
 import {
   DISC_FRACTION,
   discColour,
   evaluateProfilesCpu,
+  type CurveInputs,
   type ProfileCurves,
   type ProfileInputs,
 } from './model.ts';
@@ -14,20 +16,32 @@ import {
 /** Side of the disc picture drawn by the CPU (the GPU draws DISC_SIZE). */
 export const CPU_DISC_SIZE = 160;
 
-export function curvesCpu(inputs: ProfileInputs): { curves: ProfileCurves; milliseconds: number } {
+export function curvesCpu(inputs: CurveInputs): { curves: ProfileCurves; milliseconds: number } {
   const start = performance.now();
   const curves = evaluateProfilesCpu(inputs);
   return { curves, milliseconds: performance.now() - start };
 }
 
-/** Paints the lit disc (the twin of discFragment) into a 2D canvas of CPU_DISC_SIZE pixels. */
-export function paintDiscCpu(canvas: HTMLCanvasElement, inputs: ProfileInputs): void {
-  const size = CPU_DISC_SIZE;
-  canvas.width = size;
-  canvas.height = size;
-  const context = canvas.getContext('2d');
-  if (!context) return;
-  const image = context.createImageData(size, size);
+/** What the disc picture depends on (a cache key of the worker job holds nothing else). */
+export type DiscInputs = Pick<
+  ProfileInputs,
+  'sigmaSPrime' | 'sigmaA' | 'eta' | 'exposure' | 'view'
+>;
+
+/** The disc picture's RGBA bytes (size × size) and the float64 time they took (ms). */
+export interface DiscPixels {
+  pixels: Uint8ClampedArray<ArrayBuffer>;
+  size: number;
+  milliseconds: number;
+}
+
+/**
+ * The lit disc (the twin of discFragment) as RGBA bytes of size × size pixels: pure, so
+ * it runs in the compute worker (jobs.ts) and the page only puts the bytes on a canvas.
+ */
+export function discPixelsCpu(inputs: DiscInputs, size = CPU_DISC_SIZE): DiscPixels {
+  const start = performance.now();
+  const data = new Uint8ClampedArray(4 * size * size);
   const background = [0.018, 0.02, 0.026].map((v) => Math.round(255 * v ** (1 / 2.2)));
   const rim = DISC_FRACTION * inputs.view;
   const pixel = (2 * inputs.view) / size;
@@ -52,13 +66,22 @@ export function paintDiscCpu(canvas: HTMLCanvasElement, inputs: ProfileInputs): 
         rgb = background;
       }
       if (Math.abs(r - rim) < 0.75 * pixel) rgb = rgb.map((v) => Math.round(0.3 * v + 0.7 * 182));
-      image.data[o] = rgb[0]!;
-      image.data[o + 1] = rgb[1]!;
-      image.data[o + 2] = rgb[2]!;
-      image.data[o + 3] = 255;
+      data[o] = rgb[0]!;
+      data[o + 1] = rgb[1]!;
+      data[o + 2] = rgb[2]!;
+      data[o + 3] = 255;
     }
   }
-  context.putImageData(image, 0, 0);
+  return { pixels: data, size, milliseconds: performance.now() - start };
+}
+
+/** Puts a disc picture from discPixelsCpu on a 2D canvas. */
+export function paintDiscPixels(canvas: HTMLCanvasElement, disc: DiscPixels): void {
+  canvas.width = disc.size;
+  canvas.height = disc.size;
+  const context = canvas.getContext('2d');
+  if (!context) return;
+  context.putImageData(new ImageData(disc.pixels, disc.size, disc.size), 0, 0);
 }
 
 /** Longest stretch (ms) the fallback computes before it lets the page paint and take input. */

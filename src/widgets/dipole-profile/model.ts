@@ -108,7 +108,10 @@ export function burleyLength(sigmaTPrime: number, albedo: number): number {
 }
 
 /** Twin of evaluateProfiles: the same radii and formulas in float64, on f32-rounded inputs. */
-export function evaluateProfilesCpu(inputs: ProfileInputs): ProfileCurves {
+/** What the three profiles depend on (a cache key of the worker job holds nothing else). */
+export type CurveInputs = Pick<ProfileInputs, 'sigmaSPrime' | 'sigmaA' | 'eta'>;
+
+export function evaluateProfilesCpu(inputs: CurveInputs): ProfileCurves {
   const radii = Float64Array.from({ length: GRID_COUNT }, (_, i) => gridRadius(i));
   const curves: ProfileCurves = {
     radii,
@@ -165,7 +168,10 @@ export function unpackProfiles(output: Float32Array): ProfileCurves {
  * Twin of discFragment: the display colour (gamma 2.2, in [0, 1]) of a point at distance r
  * (mm) from the beam, inside the disc: 1 − exp(−exposure·R_d(r)) + AMBIENT·R_d,total per channel.
  */
-export function discColour(inputs: ProfileInputs, r: number): [number, number, number] {
+export function discColour(
+  inputs: Pick<ProfileInputs, 'sigmaSPrime' | 'sigmaA' | 'eta' | 'exposure'>,
+  r: number,
+): [number, number, number] {
   const colour: [number, number, number] = [0, 0, 0];
   for (let c = 0; c < 3; c++) {
     const p = dipoleParameters(inputs.sigmaSPrime[c]!, inputs.sigmaA[c]!, inputs.eta);

@@ -18,7 +18,9 @@ import {
   type SlabRun,
 } from '../../subsurface/slabKernel.ts';
 import { findMaterial } from '../../subsurface/materials.ts';
-import { CPU_DISC_SIZE, curvesCpu, monteCarloCpu, paintDiscCpu } from './cpuBackend.ts';
+import { CPU_DISC_SIZE, monteCarloCpu, paintDiscPixels } from './cpuBackend.ts';
+import { curveInputsOf, discInputsOf, type jobs as dipoleJobTable } from './jobs.ts';
+import { workerJobs } from '../../workers/compute.ts';
 import { DipoleProfileGpu } from './gpuBackend.ts';
 import {
   CHANNEL_NAMES,
@@ -37,6 +39,9 @@ import {
 import { ProfilePlot, profileLegend } from './profilePlot.ts';
 import { betterDipoleNote } from './modelNote.ts';
 import { count, type DipoleFrame, type MonteCarloSummary } from './widget.ts';
+
+/** The CPU fallback's curves and disc, in the compute worker, cached by parameters (jobs.ts). */
+const cpuJobs = workerJobs<typeof dipoleJobTable>('dipole-profile');
 
 /** Side of the disc picture on the GPU (pixels). */
 const DISC_SIZE = 320;
@@ -407,8 +412,13 @@ export function createView(
     async renderCpu(request) {
       syncMaterialControls();
       const inputs = inputsFrom(context.values);
-      const result = curvesCpu(inputs);
-      paintDiscCpu(disc.element, inputs);
+      // The float64 curves and the disc's pixels in the worker: the page only paints.
+      const options = { signal: request.signal };
+      const [result, picture] = await Promise.all([
+        cpuJobs.run('curves', [curveInputsOf(inputs)], options),
+        cpuJobs.run('disc', [discInputsOf(inputs)], options),
+      ]);
+      paintDiscPixels(disc.element, picture);
       return finishRender({ kind: 'cpu', reason: '' }, inputs, result, 'cpu', request);
     },
     onCpuFallback: () => {

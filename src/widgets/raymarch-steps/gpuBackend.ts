@@ -4,7 +4,8 @@
 // available, wall time otherwise) and writes the radiances into a storage
 // buffer, which is read back for the RMSE and the error image. The converged
 // reference is the same kernel with midpoint samples and N = REFERENCE_STEPS,
-// computed once per density scale.
+// computed once per density scale and image size (a refinement stage draws a
+// smaller image first, compared with a reference of its own size).
 import type { GpuContext } from '../../gpu/device.ts';
 import { packStruct } from '../../gpu/layout.ts';
 import { raymarchStepsKernel } from '../../gpu/layouts.generated.ts';
@@ -90,18 +91,28 @@ export async function renderImageGpu(
 }
 
 export class RaymarchStepsGpu {
-  private readonly references = new Map<number, Promise<Float32Array>>();
+  private readonly references = new Map<string, Promise<Float32Array>>();
 
   constructor(private readonly gpu: GpuContext) {}
 
-  async render(inputs: MarchInputs, steps = inputs.steps): Promise<GpuImage> {
+  /** The image at width × height (the full size, or a refinement stage's smaller one). */
+  async render(
+    inputs: MarchInputs,
+    steps = inputs.steps,
+    width = IMAGE_WIDTH,
+    height = IMAGE_HEIGHT,
+  ): Promise<GpuImage> {
     const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
-    return renderImageGpu(this.gpu.device, code, inputs, IMAGE_WIDTH, IMAGE_HEIGHT, steps);
+    return renderImageGpu(this.gpu.device, code, inputs, width, height, steps);
   }
 
-  /** The converged image (midpoint, exact update, N = REFERENCE_STEPS), once per density. */
-  reference(density: number): Promise<Float32Array> {
-    let cached = this.references.get(density);
+  /**
+   * The converged image (midpoint, exact update, N = REFERENCE_STEPS) at width × height,
+   * once per density and size.
+   */
+  reference(density: number, width = IMAGE_WIDTH, height = IMAGE_HEIGHT): Promise<Float32Array> {
+    const key = `${density}|${width}×${height}`;
+    let cached = this.references.get(key);
     if (!cached) {
       const inputs: MarchInputs = {
         steps: REFERENCE_STEPS,
@@ -111,10 +122,10 @@ export class RaymarchStepsGpu {
         density,
         seed: 0,
       };
-      cached = this.render(inputs).then((image) => image.radiance);
-      cached.catch(() => this.references.delete(density));
+      cached = this.render(inputs, REFERENCE_STEPS, width, height).then((image) => image.radiance);
+      cached.catch(() => this.references.delete(key));
       if (this.references.size > 16) this.references.clear();
-      this.references.set(density, cached);
+      this.references.set(key, cached);
     }
     return cached;
   }

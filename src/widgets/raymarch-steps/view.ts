@@ -15,6 +15,9 @@ import { SweepControls } from '../base/sweep.ts';
 import { logLogSlope } from '../../statistics/regression.ts';
 import type { Backend } from '../base/backend.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
+import { LadderFamily } from '../base/ladderFamily.ts';
+import { GPU_FIRST_PICTURE_MS } from '../base/refinement.ts';
+import { imageRungs, type ImageSize } from './stages.ts';
 import { workerJobs } from '../../workers/compute.ts';
 import { CPU_HEIGHT, CPU_WIDTH, paintImages } from './cpuBackend.ts';
 import type { jobs as marchJobTable } from './jobs.ts';
@@ -52,11 +55,13 @@ async function march(
   inputs: MarchInputs,
   steps: number,
   signal?: AbortSignal,
+  size: ImageSize = { width: IMAGE_WIDTH, height: IMAGE_HEIGHT },
 ): Promise<RaymarchFrame> {
   const measured = async (): Promise<Omit<RaymarchFrame, 'rmse' | 'largestError'>> => {
     if (backend.kind === 'gpu') {
-      const reference = await backend.renderer.reference(inputs.density);
-      const image = await backend.renderer.render(inputs, steps);
+      const { width, height } = size;
+      const reference = await backend.renderer.reference(inputs.density, width, height);
+      const image = await backend.renderer.render(inputs, steps, width, height);
       return {
         inputs,
         image,
@@ -95,6 +100,8 @@ export function createView(
   const errorImage = imageCanvas('Error image, |image − reference|', IMAGE_WIDTH, IMAGE_HEIGHT);
   let scaleTop: HTMLElement | null = null;
   let sweep: SweepControls | null = null;
+  /** The GPU's ladders of image sizes, one per N (stages.ts, ladderFamily.ts). */
+  const gpuLadders = new LadderFamily<ImageSize>(GPU_FIRST_PICTURE_MS);
 
   /** Renders N = 1, 2, 4, …, 256 and fits the order of convergence. */
   const runSweep = (controls: SweepControls): Promise<void> =>
@@ -156,9 +163,19 @@ export function createView(
       sweep = controls;
     },
     createRenderer: (gpu: GpuContext) => new RaymarchStepsGpu(gpu),
-    async renderGpu(renderer, gpu) {
+    refinement: (frame) => frame.refinement,
+    async renderGpu(renderer, gpu, request) {
       const inputs = inputsFrom(context.values);
-      return march({ kind: 'gpu', gpu, renderer }, inputs, inputs.steps);
+      const backend: Backend<RaymarchStepsGpu> = { kind: 'gpu', gpu, renderer };
+      const ladder = gpuLadders.get(String(inputs.steps), () => imageRungs(inputs.steps));
+      const choice = ladder.pick(request);
+      // The reference of this size first (once per density and size), so that the
+      // ladder learns what the march and its read-back cost, not the reference's 1024 steps.
+      await renderer.reference(inputs.density, choice.rung.value.width, choice.rung.value.height);
+      const started = performance.now();
+      const frame = await march(backend, inputs, inputs.steps, request.signal, choice.rung.value);
+      gpuLadders.record(ladder, choice, performance.now() - started);
+      return { ...frame, refinement: ladder.refinement(choice) };
     },
     renderCpu(request) {
       const inputs = inputsFrom(context.values);

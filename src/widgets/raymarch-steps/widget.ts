@@ -3,6 +3,7 @@
 // error against a converged reference (false colour, labelled scale), the RMSE,
 // the GPU time and the clamped linear factors; a cancellable sweep over
 // N = 1, 2, 4, …, 256 plots RMSE against GPU time and fits the order of convergence.
+import type { Refinement } from '../base/refinement.ts';
 import { defineWidget, type FrameCost } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { timingLabel } from '../base/timing.ts';
@@ -20,6 +21,8 @@ export interface RaymarchFrame extends FrameCost {
   largestError: number;
   /** A march reached its step cap (GPU only): the image is truncated. */
   capped: boolean;
+  /** The GPU's refinement stage (a smaller image first); absent on the CPU (one stage). */
+  refinement?: Refinement;
 }
 
 export const widget = defineWidget<RaymarchFrame>({

@@ -6,14 +6,10 @@
 import type { GpuContext } from '../../gpu/device.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import {
-  buildOctree,
   dipolesOf,
   gatherCpu,
   imageError,
   interiorMask,
-  irradianceSamples,
-  renderDiffuseCpu,
-  renderGatherCpu,
   visiblePoint,
   type Octree,
   type OctreeNode,
@@ -33,6 +29,8 @@ import {
   type RungChoice,
 } from '../base/refinement.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import { sampleSceneOf, type jobs as translucentJobTable } from './jobs.ts';
 import {
   epsilonOf,
   errorAgainstNoisyReference,
@@ -48,6 +46,12 @@ import type { TranslucentFrame } from './widget.ts';
 const STEP_BUDGET_MS = 120;
 /** Largest image side the CPU fallback draws. */
 const CPU_SIZE = 40;
+
+/**
+ * Pass 1 (samples, octree, packing) on both backends and the CPU fallback's pictures,
+ * in the compute worker, cached by arguments (jobs.ts): the page never builds or gathers.
+ */
+const translucentJobs = workerJobs<typeof translucentJobTable>('translucent-render');
 
 const percent = (x: number): string =>
   Number.isFinite(x) ? `${x >= 0 ? '+' : '−'}${formatNumber(Math.abs(100 * x), 3)}%` : '—';
@@ -69,6 +73,7 @@ const errorText = (e: NoisyReferenceError | null): string => {
 interface OctreeState {
   key: string;
   octree: Octree;
+  packed: { nodes: Uint32Array; samples: Uint32Array };
   buildMs: number;
 }
 
@@ -149,18 +154,23 @@ export function createView(
     return ladder;
   };
 
-  const octreeFor = (forScene: TranslucentScene, count: number): OctreeState => {
-    const key = [
-      forScene.radius,
-      forScene.eta,
-      ...forScene.toLight,
-      ...forScene.sigmaA,
-      count,
-    ].join('|');
+  /**
+   * The octree of the scene's irradiance samples, from the worker (jobs.ts): it depends
+   * on the sphere, its index and the light only, so a change of ε, size or exposure
+   * reuses it. `signal`: an input meanwhile drops the job if it has not started.
+   */
+  const octreeFor = async (
+    forScene: TranslucentScene,
+    count: number,
+    signal?: AbortSignal,
+  ): Promise<OctreeState> => {
+    const args: [ReturnType<typeof sampleSceneOf>, number] = [sampleSceneOf(forScene), count];
+    const key = JSON.stringify(args);
     if (octreeState?.key === key) return octreeState;
-    const start = performance.now();
-    const octree = buildOctree(irradianceSamples(forScene, count), forScene.radius);
-    octreeState = { key, octree, buildMs: performance.now() - start };
+    const built =
+      translucentJobs.cached('octree', args) ??
+      (await translucentJobs.run('octree', args, signal ? { signal } : {}));
+    octreeState = { key, octree: built.octree, packed: built.packed, buildMs: built.buildMs };
     return octreeState;
   };
 
@@ -478,21 +488,20 @@ export function createView(
     await sweep?.runSeries(async () => {
       const backend: Backend<TranslucentKernels> = await context.backend();
       const swept = scene ?? sceneFromValues(context.values);
-      const state = octreeFor(swept, sampleCountOf(context.values));
+      const count = sampleCountOf(context.values);
+      const state = await octreeFor(swept, count);
       const mask = interiorMask(swept);
-      const direct =
-        backend.kind === 'gpu'
-          ? (await backend.renderer.gather(swept, state.octree, 0)).image
-          : renderGatherCpu(swept, state.octree, 0).image;
+      // On the CPU the gathers run in the worker; their time is the worker's float64 time.
       const measure = async (
         inverse: number,
       ): Promise<{ image: Float32Array; milliseconds: number }> => {
+        const epsilon = inverse === Infinity ? 0 : 1 / inverse;
         if (backend.kind === 'gpu')
-          return backend.renderer.gather(swept, state.octree, 1 / inverse);
-        const start = performance.now();
-        const image = renderGatherCpu(swept, state.octree, 1 / inverse).image;
-        return { image, milliseconds: performance.now() - start };
+          return backend.renderer.gather(swept, state.octree, epsilon, state.packed);
+        const drawn = await translucentJobs.run('pictures', [swept, count, epsilon]);
+        return { image: drawn.image, milliseconds: drawn.gatherMs };
       };
+      const direct = (await measure(Infinity)).image;
       const cache = new Map<number, { image: Float32Array; milliseconds: number }>();
       const run = async (
         inverse: number,
@@ -542,23 +551,24 @@ export function createView(
    * this stage's rung. Only a full-quality frame becomes `scene`, which the reference, the
    * overlay and the selected pixel are measured in.
    */
-  const prepare = (
+  const prepare = async (
     onCpu: boolean,
     request: FrameRequest,
-  ): {
+  ): Promise<{
     shown: TranslucentScene;
     state: OctreeState;
     ladder: Ladder<number>;
     choice: RungChoice<number>;
-  } => {
+  }> => {
     const shown = sceneFromValues(context.values);
     cpuOnly = onCpu;
     if (onCpu) shown.size = Math.min(shown.size, CPU_SIZE);
     const ladder = ladderFor(onCpu ? 'cpu' : 'gpu', shown.size);
     const choice = ladder.pick(request);
     shown.size = choice.rung.value;
+    const state = await octreeFor(shown, sampleCountOf(context.values), request.signal);
     if (choice.final) scene = shown;
-    return { shown, state: octreeFor(shown, sampleCountOf(context.values)), ladder, choice };
+    return { shown, state, ladder, choice };
   };
 
   /** A preview's pictures: painted (pixelated), nothing else touched; the readouts say it is one. */
@@ -674,11 +684,11 @@ export function createView(
     createRenderer: (gpu: GpuContext) => new TranslucentKernels(gpu.device, STATIC_KERNELS),
     refinement: (frame) => frame.refinement,
     async renderGpu(renderer, _gpu, request) {
-      const { shown, state, ladder, choice } = prepare(false, request);
+      const { shown, state, ladder, choice } = await prepare(false, request);
       const epsilon = epsilonOf(context.values);
       const start = performance.now();
       const diffuse = await renderer.diffuse(shown);
-      const gather = await renderer.gather(shown, state.octree, epsilon);
+      const gather = await renderer.gather(shown, state.octree, epsilon, state.packed);
       ladder.record(choice.index, performance.now() - start);
       if (!choice.final)
         return finishPreview(
@@ -695,7 +705,10 @@ export function createView(
       // The direct sum does not depend on ε: computed once per octree and image size.
       const exactKey = `${state.key}|${shown.size}`;
       if (exact?.key !== exactKey)
-        exact = { key: exactKey, ...(await renderer.gather(shown, state.octree, 0)) };
+        exact = {
+          key: exactKey,
+          ...(await renderer.gather(shown, state.octree, 0, state.packed)),
+        };
       return finishFrame(
         shown,
         state,
@@ -711,39 +724,28 @@ export function createView(
         exact.milliseconds,
       );
     },
-    renderCpu(request) {
-      const { shown, state, ladder, choice } = prepare(true, request);
+    async renderCpu(request) {
+      const { shown, state, ladder, choice } = await prepare(true, request);
       const epsilon = epsilonOf(context.values);
-      const start = performance.now();
-      const diffuse = renderDiffuseCpu(shown);
-      const middle = performance.now();
-      const gather = renderGatherCpu(shown, state.octree, epsilon);
-      const end = performance.now();
-      ladder.record(choice.index, end - start);
+      // Both pictures in the worker; the ladder learns their float64 time there.
+      const drawn = await translucentJobs.run(
+        'pictures',
+        [shown, sampleCountOf(context.values), epsilon],
+        { signal: request.signal },
+      );
+      ladder.record(choice.index, drawn.diffuseMs + drawn.gatherMs);
+      const pictures = {
+        diffuse: drawn.diffuse,
+        gather: { image: drawn.image, visited: drawn.visited, exact: null },
+      };
       const times = {
         epsilon,
-        diffuse: { milliseconds: middle - start, timing: 'cpu' as const },
-        gather: { milliseconds: end - middle, timing: 'cpu' as const },
+        diffuse: { milliseconds: drawn.diffuseMs, timing: 'cpu' as const },
+        gather: { milliseconds: drawn.gatherMs, timing: 'cpu' as const },
       };
       if (!choice.final)
-        return finishPreview(
-          shown,
-          state,
-          { diffuse, gather: { image: gather.image, visited: gather.visited, exact: null } },
-          times,
-          ladder.refinement(choice),
-        );
-      return finishFrame(
-        shown,
-        state,
-        { diffuse, gather: { image: gather.image, visited: gather.visited, exact: null } },
-        {
-          epsilon,
-          diffuse: { milliseconds: middle - start, timing: 'cpu' },
-          gather: { milliseconds: end - middle, timing: 'cpu' },
-        },
-        null,
-      );
+        return finishPreview(shown, state, pictures, times, ladder.refinement(choice));
+      return finishFrame(shown, state, pictures, times, null);
     },
     onCpuFallback(reason) {
       cancelReference(`stopped: ${reason}`);
