@@ -65,7 +65,7 @@ test('moving a control changes the picture and the numbers, and the URL', async 
   await expect.poll(() => readout(widget, 'exit')).not.toBe(exitBefore);
   const after = await canvasStats(widget.locator('canvas.sb-canvas'));
   expect(after.png.equals(before.png)).toBe(false);
-  expect(page.url()).toContain('sigma-a=');
+  await expect.poll(() => page.url()).toContain('sigma-a=');
 });
 
 test('a deep link restores the state exactly', async ({ page }) => {
@@ -109,7 +109,7 @@ test('presentation mode: F enters, the widget fills the screen, number keys reca
   const box = await shell.boundingBox();
   expect(box?.width).toBeGreaterThan(1200);
   expect(box?.height).toBeGreaterThan(850);
-  expect(page.url()).toContain('present=1');
+  await expect.poll(() => page.url()).toContain('present=1');
   await page.keyboard.press('2');
   await expect(controlValue(widget, 'sigma-a')).toHaveValue('1.2');
   await page.keyboard.press('Escape');

@@ -92,7 +92,7 @@ for (const [width, height] of [
     for (let i = 1; i <= count; i++) {
       await expect(page.locator('.deck-jump')).toHaveValue(String(i));
       await expect(page.locator(`#slide-${i}`)).toBeVisible();
-      expect(page.url()).toContain(`slide=${i}`);
+      await expect.poll(() => page.url()).toContain(`slide=${i}`);
       const widget = page.locator(`#slide-${i} .deck-figure > *`);
       if ((await widget.count()) > 0) await expect(widget.locator('.sb-readout')).toBeAttached();
       for (const problem of await slideProblems(page)) failures.push(`slide ${i}: ${problem}`);
@@ -322,7 +322,7 @@ for (const [width, height] of [
     await expect(widget.locator('select[name="profile"]')).toHaveValue('layered');
     await page.keyboard.press('Escape');
     await expect(shell).not.toHaveClass(/is-presenting/);
-    expect(page.url()).not.toContain('present=1');
+    await expect.poll(() => page.url()).not.toContain('present=1');
   });
 }
 

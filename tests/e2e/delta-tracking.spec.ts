@@ -70,7 +70,7 @@ test('switching to the biased exp(−τ̂) changes the picture and the numbers, 
   expect(parseDisplayed(await readout(widget, 'lookups'))).toBe(1);
   const after = await canvasStats(widget.locator('canvas.sb-canvas').first());
   expect(after.png.equals(before.png)).toBe(false);
-  expect(page.url()).toContain('estimator=biased');
+  await expect.poll(() => page.url()).toContain('estimator=biased');
 });
 
 test('a majorant that is too low biases delta tracking high (physics.md §4.5)', async ({
@@ -263,7 +263,7 @@ test('compare view: the grid switches to per-pixel variance without re-rendering
   const meanVariance = parseDisplayed(/mean Var (\S+)/.exec(caption ?? '')?.[1] ?? '');
   expect(meanVariance).toBeGreaterThan(0.085);
   expect(meanVariance).toBeLessThan(0.105);
-  expect(page.url()).toContain('grid=variance');
+  await expect.poll(() => page.url()).toContain('grid=variance');
 });
 
 test('compare view: the sweep of all five estimators draws five series with fitted slopes, and can be cancelled', async ({
@@ -335,7 +335,7 @@ test('a deep link #…view=compare restores the comparison and its settings', as
   await waitForRender(widget, rendered + 1);
   await expect(widget.locator('canvas.sb-canvas')).toHaveCount(2);
   await expect(control(widget, 'grid')).toBeHidden();
-  expect(page.url()).not.toContain('view=compare');
+  await expect.poll(() => page.url()).not.toContain('view=compare');
 });
 
 test('compare view in presentation mode: the grid fills the screen with readable captions', async ({

@@ -70,7 +70,7 @@ test('a material preset changes the picture, the coefficients and the numbers', 
   await expect(control(widget, 'sigma-a-b')).toHaveValue('1.45');
   const after = await canvasStats(widget.locator('canvas.sb-canvas').first());
   expect(after.png.equals(before.png)).toBe(false);
-  expect(page.url()).toContain('material=ketchup');
+  await expect.poll(() => page.url()).toContain('material=ketchup');
 });
 
 test('editing a coefficient by hand leaves the preset and recomputes the totals', async ({

@@ -145,7 +145,7 @@ test('moving g changes the picture, the numbers and the URL', async ({ page }) =
   await expect
     .poll(async () => (await canvasStats(widget.locator('canvas.sb-hg-3d'))).png.equals(before3d))
     .toBe(false);
-  expect(page.url()).toContain('g=0.8');
+  await expect.poll(() => page.url()).toContain('g=0.8');
   await expectSoundNumbers(widget, Math.fround(0.8));
 });
 
@@ -202,7 +202,7 @@ test('presentation mode: F enters and fills the screen, number keys recall the p
   const box = await shell.boundingBox();
   expect(box?.width).toBeGreaterThan(1200);
   expect(box?.height).toBeGreaterThan(850);
-  expect(page.url()).toContain('present=1');
+  await expect.poll(() => page.url()).toContain('present=1');
   await expect(widget.locator('canvas.sb-hg-polar')).toBeInViewport();
   await page.keyboard.press('4');
   await expect(widget.locator('.sb-preset-toast')).toHaveText('4 · g = 0.9 (clouds)');

@@ -100,7 +100,7 @@ test("a wrong answer shows that option's explanation, the right one the explanat
 
   // Checking wrote this quiz's order into the address bar; a reload keeps both.
   const before = await order(quiz);
-  expect(page.url()).toMatch(/#.*quiz-2\.order=[0-9a-z]+/);
+  await expect.poll(() => page.url()).toMatch(/#.*quiz-2\.order=[0-9a-z]+/);
   await page.reload();
   await expect(page.locator('#quiz-2')).toHaveClass(/is-correct/);
   expect(await order(page.locator('#quiz-2'))).toEqual(before);

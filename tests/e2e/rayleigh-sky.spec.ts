@@ -99,7 +99,7 @@ test('more view-ray samples lower the error against the converged reference, and
   await expect(widget.locator('.sb-cost')).toContainText('N = 64 view samples × M = 16');
   // Midpoint rule, O(h²): 8× more samples cut the error by ~64; at least 10× here.
   await expect.poll(() => largestError(widget)).toBeLessThan(coarse / 10);
-  expect(page.url()).toContain('steps=64');
+  await expect.poll(() => page.url()).toContain('steps=64');
   rendered = Number(await widget.getAttribute('data-rendered'));
   const slider = widget.locator('input[type="range"][name="sun-elevation"]');
   await slider.focus();
@@ -255,7 +255,7 @@ test('presentation mode: F enters and fills the screen, number keys recall the p
   const box = await shell.boundingBox();
   expect(box?.width).toBeGreaterThan(1200);
   expect(box?.height).toBeGreaterThan(850);
-  expect(page.url()).toContain('present=1');
+  await expect.poll(() => page.url()).toContain('present=1');
   await expect(widget.locator('canvas.sb-canvas')).toBeInViewport();
   await page.keyboard.press('2');
   await expect(widget.locator('.sb-preset-toast')).toHaveText('2 · afternoon');

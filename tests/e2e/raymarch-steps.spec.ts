@@ -59,7 +59,7 @@ test('midpoint samples beat left samples at the same N, and the picture changes'
     .toBeLessThan(left / 5);
   const after = await canvasStats(widget.locator('canvas.sb-canvas').nth(1));
   expect(after.png.equals(before.png)).toBe(false);
-  expect(page.url()).toContain('placement=midpoint');
+  await expect.poll(() => page.url()).toContain('placement=midpoint');
 });
 
 test('the linear update at N = 4 clamps negative factors and says so; exact never does', async ({

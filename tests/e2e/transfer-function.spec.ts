@@ -76,7 +76,7 @@ test('a preset changes the transfer function, the picture and the link, and keep
   await expect(control(widget, 'step')).toHaveValue('1.5');
   const after = await canvasStats(widget.locator('canvas.sb-canvas').first());
   expect(after.png.equals(before.png)).toBe(false);
-  expect(page.url()).toContain(`${ID}.colormap=bone`);
+  await expect.poll(() => page.url()).toContain(`${ID}.colormap=bone`);
 });
 
 test('the arrow keys on the image orbit the camera', async ({ page }) => {
@@ -93,7 +93,7 @@ test('the arrow keys on the image orbit the camera', async ({ page }) => {
   await expect
     .poll(async () => (await canvasStats(canvas)).png.equals(before.png), { timeout: 30_000 })
     .toBe(false);
-  expect(page.url()).toContain(`${ID}.azimuth=40`);
+  await expect.poll(() => page.url()).toContain(`${ID}.azimuth=40`);
 });
 
 test('dragging the image orbits the camera', async ({ page }) => {
@@ -163,7 +163,7 @@ test('the opacity handles move with the arrow keys and update the link', async (
   await expect(control(widget, 'opacity-3')).toHaveValue('0.04');
   await expect(control(widget, 'hu-3')).toHaveValue('40');
   await expect(handle).toHaveAttribute('aria-label', /40 HU, opacity 0\.04/);
-  expect(page.url()).toContain(`${ID}.hu-3=40`);
+  await expect.poll(() => page.url()).toContain(`${ID}.hu-3=40`);
 });
 
 test('a deep link restores the state exactly', async ({ page }) => {

@@ -50,7 +50,7 @@ test('renders three pictures with time and error, and ε changes the nodes visit
     .poll(async () => Number(await widget.getAttribute('data-rendered')))
     .toBeGreaterThan(rendered);
   await expect.poll(() => meanVisited(widget)).toBeGreaterThan(coarse);
-  expect(page.url()).toContain('log-epsilon=-2');
+  await expect.poll(() => page.url()).toContain('log-epsilon=-2');
   expect(errors).toEqual([]);
 });
 

@@ -118,7 +118,7 @@ test('raising the albedo changes the multiple-scattering image more than the sin
   expect(multipleAfter - multipleBefore).toBeGreaterThan(2 * (singleAfter - singleBefore));
   expect(multipleAfter).toBeGreaterThan(multipleBefore + 20);
   expect(parseDisplayed(await readout(widget, 'ratio'))).toBeGreaterThan(ratioBefore);
-  expect(page.url()).toContain('albedo=0.99');
+  await expect.poll(() => page.url()).toContain('albedo=0.99');
 });
 
 test('switching to the puffy cloud shows a preview first, then settles; the old scene stops', async ({

@@ -86,7 +86,7 @@ test('moving σ0 changes the picture, the numbers and the URL', async ({ page })
     .toBeCloseTo(exactL(1.5, 0.5, 0.5, 0.3, 1, 2), 5);
   const after = await canvasStats(widget.locator('canvas.sb-canvas'));
   expect(after.png.equals(before.png)).toBe(false);
-  expect(page.url()).toContain('sigma=1.5');
+  await expect.poll(() => page.url()).toContain('sigma=1.5');
 });
 
 test('a deep link restores the state exactly', async ({ page }) => {
@@ -112,7 +112,7 @@ test('presentation mode: F enters, number keys recall the presets (3 hides the b
   await page.keyboard.press('f');
   const shell = widget.locator('.sb-widget');
   await expect(shell).toHaveClass(/is-presenting/);
-  expect(page.url()).toContain('present=1');
+  await expect.poll(() => page.url()).toContain('present=1');
   await expect(widget.locator('canvas.sb-canvas')).toBeInViewport();
   await page.keyboard.press('3');
   await expect(widget.locator('.sb-preset-toast')).toContainText(
