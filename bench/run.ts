@@ -1,6 +1,6 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,photons,grading,pages,interaction
+// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,peers,photons,grading,pages,interaction
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
 // and --only-widgets=a,b, see bench/interaction.ts).
@@ -12,6 +12,7 @@ import { benchEstimators } from './estimators.ts';
 import { benchGrading } from './grading.ts';
 import { benchInteraction, interactionOptionsFromArgs } from './interaction.ts';
 import { benchPages } from './pages.ts';
+import { benchPeers } from './peers.ts';
 import { benchPhotons } from './photons.ts';
 import { benchScenes } from './scenes.ts';
 import { benchSubsurface } from './subsurface.ts';
@@ -72,6 +73,17 @@ if (wanted('scenes'))
       spp: quick ? 16 : 64,
       samplesPerPass: quick ? 4 : 8,
       cpuSpp: quick ? 1 : 4,
+    }),
+  );
+// Mitsuba 3 as a peer: only when asked for by name (it installs Mitsuba into .cache/peers).
+if (only?.includes('peers'))
+  tables.push(
+    await benchPeers(device, {
+      size: 64,
+      spp: quick ? 16 : 64,
+      samplesPerPass: quick ? 4 : 16,
+      mitsubaImages: quick ? 4 : 8,
+      processes: !process.argv.includes('--no-processes'),
     }),
   );
 if (wanted('photons'))

@@ -6,6 +6,7 @@
 import { writeFile } from 'node:fs/promises';
 import { fileURLToPath } from 'node:url';
 import { PNG } from 'pngjs';
+import { diskCachedKernels } from '../gpu/linkCacheNode.ts';
 import { loadShaderLibrary } from '../gpu/shaderSourcesNode.ts';
 import { encodePfm, toneMapRgba8 } from '../scene/image.ts';
 import { loadSceneFile } from '../scene/loadNode.ts';
@@ -14,6 +15,8 @@ import { renderScene, type Backend, type SceneRender } from '../scene/renderScen
 import { SceneValidationError } from '../scene/validate.ts';
 
 const SHADERS_DIRECTORY = fileURLToPath(new URL('../../shaders', import.meta.url));
+/** Linked WGSL per kernel variant (src/gpu/linkCacheNode.ts); git ignores .cache/. */
+const LINKED_CACHE_DIRECTORY = fileURLToPath(new URL('../../.cache/wgsl', import.meta.url));
 
 export const RENDER_SYNOPSIS = `  scatterbook render SCENE.json --out IMAGE.pfm [--png IMAGE.png] [--spp N]
                      [--backend gpu|cpu] [--stats FILE.json] [--kernel plan|general]
@@ -161,7 +164,8 @@ export async function runRender(positionals: string[], flags: RenderFlags): Prom
     const device = await nodeDevice();
     const info = (device as GPUDevice & { adapterInfo?: GPUAdapterInfo }).adapterInfo;
     deviceName = `Dawn (webgpu npm package)${info ? `: ${[info.vendor, info.architecture, info.description].filter(Boolean).join(' ')}` : ''}`;
-    backend = { kind: 'gpu', device, library: loadShaderLibrary(SHADERS_DIRECTORY) };
+    const library = diskCachedKernels(loadShaderLibrary(SHADERS_DIRECTORY), LINKED_CACHE_DIRECTORY);
+    backend = { kind: 'gpu', device, library };
     release = releaseNodeDevice;
   }
   let render: SceneRender;

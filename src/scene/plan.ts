@@ -28,6 +28,7 @@ export const CONDITION_NAMES = [
   'lightSpot',
   'lightEnvironment',
   'equiangular',
+  'oneHomogeneousMedium',
 ] as const;
 
 export type ConditionName = (typeof CONDITION_NAMES)[number];
@@ -58,6 +59,7 @@ export const GENERAL_CONDITIONS: Conditions = {
   lightSpot: true,
   lightEnvironment: true,
   equiangular: false,
+  oneHomogeneousMedium: false,
 };
 
 export type Integrator = 'emission-absorption' | 'single-scattering' | 'path-tracing';
@@ -113,6 +115,16 @@ export function plan(scene: SceneDescription): Plan {
   const homogeneousScattering = scatteringMedia.some((m) => m.type === 'homogeneous');
   const equiangular = !pathTracing && volumeScattering && localLights && homogeneousScattering;
   const phases = new Set(scatteringMedia.map((m) => m.phase.type));
+  // One homogeneous medium lit by delta lights (nothing else in the scene): the one-medium
+  // kernels of shaders/integrator.wesl, which skip the segment lists and vertex records.
+  const oneHomogeneousMedium =
+    volumeScattering &&
+    media.length === 1 &&
+    media[0]!.type === 'homogeneous' &&
+    !surfaces &&
+    !emission &&
+    !kinds.has('environment') &&
+    (pathTracing || !equiangular);
   const shadowRays = scattering && deltaLights;
 
   const effects: PlanEffect[] = [];
@@ -124,11 +136,14 @@ export function plan(scene: SceneDescription): Plan {
   add(
     'integrator',
     true,
-    integrator === 'path-tracing'
+    (integrator === 'path-tracing'
       ? 'volumetric path tracing (spectral tracking, next-event estimation, Russian roulette)'
       : integrator === 'single-scattering'
         ? 'single-scattering estimator (one distance sample per medium segment, shadow rays)'
-        : 'emission–absorption (no scattering code)',
+        : 'emission–absorption (no scattering code)') +
+      (oneHomogeneousMedium
+        ? '; one homogeneous medium under delta lights: the one-medium kernel (no segment lists)'
+        : ''),
     integrator === 'path-tracing'
       ? `scattering order ${orderText} ≥ 2 and something scatters`
       : integrator === 'single-scattering'
@@ -290,6 +305,7 @@ export function plan(scene: SceneDescription): Plan {
     lightSpot: scattering && kinds.has('spot'),
     lightEnvironment: kinds.has('environment'),
     equiangular,
+    oneHomogeneousMedium,
   };
   return { integrator, scatteringOrder: order, effects, conditions };
 }

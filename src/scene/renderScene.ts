@@ -1,7 +1,7 @@
 // One call to render a resolved scene on either backend: plan it, pack it, specialize
 // the kernel (or use the general one) and run the progressive loop. Used by the command
 // line, the benchmarks, the tests and (later) the chapter 9–10 widgets.
-import type { ShaderLibrary } from '../gpu/link.ts';
+import type { KernelLibrary } from '../gpu/link.ts';
 import { CpuSceneRenderer } from './cpuRenderer.ts';
 import { GpuSceneRenderer } from './gpuRenderer.ts';
 import type { ResolvedScene } from './load.ts';
@@ -15,7 +15,7 @@ import {
   type RenderResult,
 } from './render.ts';
 
-export type Backend = { kind: 'gpu'; device: GPUDevice; library: ShaderLibrary } | { kind: 'cpu' };
+export type Backend = { kind: 'gpu'; device: GPUDevice; library: KernelLibrary } | { kind: 'cpu' };
 
 export interface SceneRenderOptions {
   /** Samples per pixel; the scene's samplesPerPixel when absent. */

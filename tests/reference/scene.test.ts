@@ -265,7 +265,30 @@ describe('the planner', () => {
       equiangular: true,
       lightPoint: true,
       homogeneousClosedForm: true,
+      oneHomogeneousMedium: false,
     });
+  });
+
+  it('the one-medium kernel: one homogeneous medium under delta lights and nothing else', () => {
+    const sun = { type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] };
+    const one = (json: Record<string, unknown>) =>
+      planOf({ ...base(), media: [fog()], lights: [sun], ...json }).conditions.oneHomogeneousMedium;
+    expect(one({})).toBe(true);
+    expect(one({ scatteringOrder: 'unlimited' })).toBe(true);
+    const point = { type: 'point', position: [0, 0.5, 0], intensity: [1, 1, 1] };
+    // Single scattering under a point light takes equiangular points (the general estimator);
+    // the path tracer samples free flights either way.
+    expect(one({ lights: [point] })).toBe(false);
+    expect(one({ lights: [point], scatteringOrder: 'unlimited' })).toBe(true);
+    expect(one({ lights: [sun, { type: 'environment', radiance: [1, 1, 1] }] })).toBe(false);
+    expect(one({ media: [fog({ emission: [1, 1, 1] })] })).toBe(false);
+    expect(
+      one({ surfaces: [{ type: 'sphere', center: [0, 0, 0], radius: 0.2, albedo: [1, 1, 1] }] }),
+    ).toBe(false);
+    expect(one({ scatteringOrder: 0 })).toBe(false);
+    expect(
+      effect(planOf({ ...base(), media: [fog()], lights: [sun] }), 'integrator')?.method,
+    ).toMatch(/one-medium kernel/);
   });
 
   it('order ≥ 2 with something that scatters: the path tracer', () => {
@@ -333,6 +356,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       ...base(),
       media: [fog()],
       lights: [{ type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] }],
+      surfaces: [{ type: 'sphere', center: [0, 0, 0], radius: 0.2, albedo: [0.5, 0.5, 0.5] }],
     });
     expect(defines(code, 'estimateSingleScattering')).toBe(true);
     expect(defines(code, 'shadowTransmittance')).toBe(true);
@@ -346,9 +370,40 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'spotFalloff',
       'equiangularSample',
       'hgEvalDirections',
-      'surfaceHitDistance',
+      'estimateSingleScatteringOneMedium',
     ])
       expect(defines(code, fn), fn).toBe(false);
+  });
+
+  it('one homogeneous medium under delta lights: the one-medium kernels, without segment lists, surfaces or the general estimators', async () => {
+    const single = await link({
+      ...base(),
+      media: [fog()],
+      lights: [{ type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] }],
+    });
+    expect(defines(single, 'estimateSingleScatteringOneMedium')).toBe(true);
+    expect(defines(single, 'transmittanceBeer')).toBe(true);
+    for (const fn of [
+      'estimateSingleScattering',
+      'sceneSegments',
+      'segmentWalk',
+      'vertexDirectLighting',
+      'sampleFreeFlight',
+      'surfaceHitDistance',
+      'estimatePathTracing',
+      'estimatePathTracingOneMedium',
+    ])
+      expect(defines(single, fn), fn).toBe(false);
+    const multiple = await link({
+      ...base(),
+      scatteringOrder: 'unlimited',
+      media: [fog()],
+      lights: [{ type: 'point', position: [0, 0.5, 0], intensity: [1, 1, 1] }],
+    });
+    expect(defines(multiple, 'estimatePathTracingOneMedium')).toBe(true);
+    expect(defines(multiple, 'mediumFreeFlight')).toBe(true);
+    for (const fn of ['estimatePathTracing', 'sceneSegments', 'vertexDirectLighting'])
+      expect(defines(multiple, fn), fn).toBe(false);
   });
 
   it('grids with point and spot lights: ratio tracking, the majorant grid and the spot falloff are linked', async () => {

@@ -6,7 +6,8 @@
 //    z-scores from both standard errors, tests/support/sceneRender.ts), including the
 //    general kernel; f32 rounding makes some paths diverge, so agreement is statistical;
 //  - the white furnace on the GPU: every pixel equals the environment;
-//  - specialized vs general kernels on the GPU (different code, different random numbers).
+//  - specialized vs general kernels on the GPU (different code, different random numbers);
+//    the §5 slab runs the one-medium kernels (plan condition oneHomogeneousMedium).
 // Images are small (8×8, a few dozen samples) because SwiftShader runs WebGPU on the CPU;
 // each distinct kernel is compiled once (the pipeline cache is per device).
 import { beforeAll, describe, it } from 'vitest';
@@ -118,6 +119,28 @@ describe('scene kernel on the GPU', () => {
         await gpu(scene, { kernel: 'general' }),
         await cpu(scene, { kernel: 'general' }),
         'cloud-sky, general kernel',
+      );
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'the one-medium path tracer (homogeneous slab, sun and a point light, all orders): GPU = twin, and = the general kernel',
+    async () => {
+      const json = slabScene('homogeneous', 'unlimited');
+      const scene = await sceneFrom({
+        ...json,
+        lights: [
+          ...json.lights,
+          { type: 'point', position: [0.2, 0.6, 0.1], intensity: [0.3, 0.2, 0.1] },
+        ],
+      });
+      const specialized = await gpu(scene);
+      expectAgreement(specialized, await cpu(scene), 'one-medium path tracer, GPU vs twin');
+      expectAgreement(
+        specialized,
+        await gpu(scene, { kernel: 'general', spp: 128 }),
+        'one-medium path tracer vs general kernel',
       );
     },
     GPU_TIMEOUT,
