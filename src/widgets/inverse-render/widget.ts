@@ -87,21 +87,47 @@ function costText(frame: InverseRenderFrame, how: string): string {
 export const widget = defineWidget<InverseRenderFrame>({
   entry: INVERSE_RENDER,
   presets: [
-    { label: '8 views, 32³', values: { model: 'grid', views: 8, grid: '32', regularizer: 'none' } },
     {
-      label: '8 views, neural field (hash grid + MLP)',
-      values: { model: 'neural', views: 8, table: '12', rate: 0.02, batch: 512 },
+      label: '8 views, 32³',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 8, grid: '32', regularizer: 'none' },
     },
-    { label: '3 views: ambiguity', values: { views: 3, regularizer: 'none' } },
-    { label: '1 view: no depth', values: { views: 1, regularizer: 'none' } },
-    { label: '8 views, 16³: fewer unknowns', values: { views: 8, grid: '16' } },
+    {
+      label: '3 views: ambiguity',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 3, regularizer: 'none' },
+    },
+    {
+      label: '1 view: no depth',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 1, regularizer: 'none' },
+    },
+    {
+      label: '8 views, 16³: fewer unknowns',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 8, grid: '16' },
+    },
     {
       label: '8 views + smoothness prior',
-      values: { views: 8, regularizer: 'tv', weight: 0.001 },
+      values: {
+        model: 'grid',
+        rate: 0.05,
+        batch: 1024,
+        views: 8,
+        regularizer: 'tv',
+        weight: 0.001,
+      },
     },
     {
       label: '8 views + sparsity prior',
-      values: { views: 8, regularizer: 'sparsity', weight: 0.003 },
+      values: {
+        model: 'grid',
+        rate: 0.05,
+        batch: 1024,
+        views: 8,
+        regularizer: 'sparsity',
+        weight: 0.003,
+      },
+    },
+    {
+      label: '8 views, neural field (hash grid + MLP)',
+      values: { model: 'neural', views: 8, table: '12', rate: 0.02, batch: 512 },
     },
   ],
   readouts: {
