@@ -127,7 +127,7 @@ export const widget = defineWidget<InverseRenderFrame>({
     },
     {
       label: '8 views, neural field (hash grid + MLP)',
-      values: { model: 'neural', views: 8, table: '12', rate: 0.02, batch: 512 },
+      values: { model: 'neural', views: 8, table: '12', rate: 0.05, batch: 512 },
     },
   ],
   readouts: {
@@ -255,7 +255,7 @@ export const widget = defineWidget<InverseRenderFrame>({
         model: 'neural',
         views: '8',
         table: '12',
-        rate: '0.02',
+        rate: '0.05',
         batch: '512',
       },
       caption:
