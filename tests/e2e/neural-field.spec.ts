@@ -2,17 +2,30 @@
 // Chromium: a deep link selects it, its size is shown beside the grid's, a few GPU
 // iterations lower the batch loss below the empty start; without WebGPU the float64
 // twin draws the same views at its smaller size and says so.
-import { expect, test } from '@playwright/test';
-import { canvasStats, parseDisplayed, readout, trackErrors, widgetOpener } from './support.ts';
+import { expect, test, type Locator, type Page } from '@playwright/test';
+import { canvasStats, parseDisplayed, readout, trackErrors, waitForRender } from './support.ts';
 
-const openWidget = widgetOpener(
-  '/chapters/08-inverse-volume-rendering.html',
-  'sb-inverse-render',
-  'inverse-render-1',
-);
+/**
+ * Opens chapter 8 with the widget's state in the hash. The neural field's set-up builds
+ * the grid's pipelines (for the targets) and its own, which takes SwiftShader up to a
+ * minute on a loaded machine: wait for the status line before the usual render wait.
+ */
+async function openWidget(page: Page, state: Record<string, string>, query = ''): Promise<Locator> {
+  const hash = Object.entries(state)
+    .map(([k, v]) => `inverse-render-1.${k}=${v}`)
+    .join('&');
+  await page.goto(`/chapters/08-inverse-volume-rendering.html${query}#${hash}`);
+  const widget = page.locator('sb-inverse-render').first();
+  await widget.scrollIntoViewIfNeeded();
+  await expect(widget.locator('.sb-ir-status')).toContainText('Ready', { timeout: 150_000 });
+  await waitForRender(widget);
+  return widget;
+}
 
 // A small problem, so that a few iterations run quickly on SwiftShader.
 const SMALL = { model: 'neural', views: '4', steps: '16', batch: '256', rate: '0.05' };
+
+test.setTimeout(300_000);
 
 test('deep link to the neural field: its size and cost line, and a few GPU iterations lower the loss', async ({
   page,
