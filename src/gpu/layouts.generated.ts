@@ -118,6 +118,20 @@ const PhaseTable = /* @__PURE__ */ struct('PhaseTable', 8208, 4, {
   pdf: [4104, /* @__PURE__ */ array(f32, 513, 4)],
   cdf: [6156, /* @__PURE__ */ array(f32, 513, 4)],
 });
+const NeuralParams = /* @__PURE__ */ struct('NeuralParams', 64, 16, {
+  tableSize: [0, u32],
+  size: [4, u32],
+  trainViews: [8, u32],
+  steps: [12, u32],
+  renderViews: [16, u32],
+  lossCapacity: [20, u32],
+  batch: [24, u32],
+  seed: [28, u32],
+  background: [32, vec3f],
+  lossWeight: [44, f32],
+  learningRate: [48, f32],
+  parameterCount: [52, u32],
+});
 const vec3u = { kind: 'vector', scalar: 'u32', length: 3, size: 12, align: 16 } as const;
 const PhotonParams = /* @__PURE__ */ struct('PhotonParams', 208, 16, {
   boxMin: [0, vec3f],
@@ -387,6 +401,9 @@ export const inverseRenderKernel = { InverseParams: InverseParams, Camera: Camer
 /** Bound structs of kernels/mie-lobe.wesl. */
 export const mieLobeKernel = { PhaseTable: PhaseTable };
 
+/** Bound structs of kernels/neural-field.wesl. */
+export const neuralFieldKernel = { NeuralParams: NeuralParams, Camera: Camera };
+
 /** Bound structs of kernels/photon-map.wesl. */
 export const photonMapKernel = { PhotonParams: PhotonParams };
 
@@ -444,6 +461,7 @@ export const KERNEL_LAYOUTS = {
   'kernels/hg-lobe.wesl': hgLobeKernel,
   'kernels/inverse-render.wesl': inverseRenderKernel,
   'kernels/mie-lobe.wesl': mieLobeKernel,
+  'kernels/neural-field.wesl': neuralFieldKernel,
   'kernels/photon-map.wesl': photonMapKernel,
   'kernels/rayleigh-sky.wesl': rayleighSkyKernel,
   'kernels/raymarch-steps.wesl': raymarchStepsKernel,

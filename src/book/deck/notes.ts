@@ -128,6 +128,11 @@ export const SPEAKER_NOTES: Readonly<Record<SlideKey, string>> = {
     'Press Start. Adam fits 131,072 grid values to eight images through the gradient of the ray marcher. ' +
     'Point at “Reduction from the start”: tenfold within about a hundred iterations, and at the held-out ' +
     'view MSE, which tells what eight views pin down. Iterations per second depend on the GPU.',
+  'inverse-render/A neural field: hash grid + tiny MLP':
+    'Press Start. The model is a table of learned features on eight grids from 4³ to 45³ cells, hashed ' +
+    'where a grid has more vertices than the table, read by a 16-unit MLP. Point at “Model size” (half the ' +
+    'grid’s parameters) and at the plot: both models’ losses against wall time. Per iteration the network ' +
+    'costs more; compare per second.',
   'inverse-render/Three views: low loss, wrong volume':
     'Same fit, three cameras. Press Start and wait for the training loss to fall; then point at the ' +
     'held-out view: haze in corners that are empty in the truth. Low loss, wrong volume: many volumes make ' +

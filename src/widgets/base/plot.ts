@@ -93,8 +93,10 @@ export class LinePlot {
   /** Draws x against the series; rebuilds the chart only when the series change. */
   update(x: ArrayLike<number>, series: readonly PlotSeries[]): void {
     this.lastData = { x, series };
+    // Missing values (NaN; ≤ 0 on a log axis) as null, which uPlot skips: a NaN would
+    // poison the axis range and hide every curve.
     const column = (values: ArrayLike<number>): (number | null)[] =>
-      this.options.yLog ? Array.from(values, (v) => (v > 0 ? v : null)) : Array.from(values);
+      Array.from(values, (v) => (Number.isFinite(v) && (!this.options.yLog || v > 0) ? v : null));
     const data = [Array.from(x), ...series.map((s) => column(s.values))] as uPlot.AlignedData;
     const fontSize = this.fontSize();
     const signature = `${fontSize};${series.map((s) => `${s.label}|${s.color}`).join(';')}`;

@@ -1,4 +1,4 @@
-// The CPU fallback's optimizer behind a message interface, so that the same code
+// The CPU fallback's optimizer (the voxel grid's or the neural field's) behind a message interface, so that the same code
 // runs in a Web Worker (cpuWorker.ts; DESIGN.md asks heavy fallbacks to leave the
 // page's thread) or, where no worker can be started, in the page itself. Each
 // request is answered with one response; times are the float64 computing time.
@@ -11,6 +11,7 @@ import {
   type Problem,
   type ViewAngle,
 } from './model.ts';
+import { NeuralOptimizerCpu } from './neuralModel.ts';
 
 export type CpuRequest =
   | { type: 'setup'; id: number; problem: Problem }
@@ -26,7 +27,8 @@ export type CpuResponse =
 
 /** One optimization's state on the CPU, and the requests that drive it. */
 export class CpuTrainingSession {
-  private optimizer: InverseOptimizerCpu | null = null;
+  /** The grid's or the neural field's optimizer (the same interface). */
+  private optimizer: InverseOptimizerCpu | NeuralOptimizerCpu | null = null;
 
   handle(request: CpuRequest): CpuResponse {
     try {
@@ -43,7 +45,10 @@ export class CpuTrainingSession {
   private answer(request: CpuRequest): CpuResponse {
     if (request.type === 'setup') {
       const targets = renderTargetsCpu(request.problem);
-      this.optimizer = new InverseOptimizerCpu(request.problem, targets);
+      this.optimizer =
+        request.problem.model === 'neural'
+          ? new NeuralOptimizerCpu(request.problem, targets)
+          : new InverseOptimizerCpu(request.problem, targets);
       // A copy: the worker hands the response's buffer over to the page.
       return { type: 'targets', id: request.id, targets: targets.slice() };
     }

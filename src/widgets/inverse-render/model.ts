@@ -56,6 +56,8 @@ export const GPU_IMAGE_SIZE = 32;
 export const CPU_IMAGE_SIZE = 20;
 /** The CPU fallback optimizes at most this resolution (the twin in float64 is slow). */
 export const CPU_MAX_RESOLUTION = 16;
+/** The CPU fallback's neural field uses at most 2¹² entries per level. */
+export const CPU_MAX_TABLE_LOG2 = 12;
 /** Regularizer codes shared with the kernel (InverseParams.regularizer). */
 export const REGULARIZERS: Readonly<Record<string, number>> = { none: 0, tv: 1, sparsity: 2 };
 
@@ -119,8 +121,15 @@ export interface ViewAngle {
   elevation: number;
 }
 
+/** The model fitted to the images: the voxel grid, or the neural field of neuralModel.ts. */
+export type ModelKind = 'grid' | 'neural';
+
 export interface Problem {
+  model: ModelKind;
+  /** Voxels per axis of the grid (model 'grid'). */
   resolution: number;
+  /** Entries T per level of the hash tables (model 'neural'), a power of two. */
+  tableSize: number;
   /** Training views, then (last) the held-out view. */
   views: ViewAngle[];
   trainViews: number;
@@ -160,8 +169,13 @@ export function problemFrom(values: ParameterValues, backend: 'gpu' | 'cpu'): Pr
   const resolution = backend === 'cpu' ? Math.min(requested, CPU_MAX_RESOLUTION) : requested;
   const trainViews = Math.max(1, Math.round(Number(values['views']) || 1));
   const novelAzimuth = (Number(values['novel']) * Math.PI) / 180;
+  const model: ModelKind = values['model'] === 'neural' ? 'neural' : 'grid';
+  const log2 = Math.round(Number(values['table']) || 12);
+  const tableLog2 = Math.min(Math.max(log2, 8), backend === 'cpu' ? CPU_MAX_TABLE_LOG2 : 16);
   return {
+    model,
     resolution,
+    tableSize: 2 ** tableLog2,
     views: [...trainingViews(trainViews), { azimuth: novelAzimuth, elevation: NOVEL_ELEVATION }],
     trainViews,
     size: backend === 'cpu' ? CPU_IMAGE_SIZE : GPU_IMAGE_SIZE,

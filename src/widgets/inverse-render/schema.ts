@@ -9,8 +9,33 @@ export const INVERSE_RENDER: WidgetEntry = {
   name: 'inverse-render',
   title: 'Inverse volume rendering: fitting a grid to images',
   description:
-    'Images of a hidden volume from several views are the data. A grid of raw density and emission (σt = 10·softplus(ρ), colour = sigmoid(e), trilinear) is fitted to them by Adam, with the gradient of the emission–absorption ray marcher computed on the GPU. The widget shows the target and current views, a held-out view with its error, the loss curve, iterations per second and GPU time per iteration.',
+    'Images of a hidden volume from several views are the data. A grid of raw density and emission (σt = 10·softplus(ρ), colour = sigmoid(e), trilinear) is fitted to them by Adam, with the gradient of the emission–absorption ray marcher computed on the GPU; or a neural field (a multiresolution hash encoding and a small MLP, as in Instant-NGP) is fitted to the same images. The widget shows the target and current views, a held-out view with its error, the loss curve, iterations per second and GPU time per iteration.',
   parameters: [
+    {
+      kind: 'choice',
+      name: 'model',
+      label: 'Model',
+      choices: [
+        { value: 'grid', label: 'Voxel grid' },
+        { value: 'neural', label: 'Neural field: hash grid + MLP' },
+      ],
+      default: 'grid',
+      description:
+        'What is fitted: a grid of raw density and emission, or Instant-NGP’s multiresolution hash encoding (8 levels, 2 features each) with an MLP of 16 hidden units. The loss plot keeps the other model’s last run on the same views for comparison. Changing it starts afresh.',
+    },
+    {
+      kind: 'choice',
+      name: 'table',
+      label: 'Hash table size (neural field)',
+      choices: [
+        { value: '10', label: 'T = 2¹⁰ entries per level' },
+        { value: '12', label: 'T = 2¹² entries per level' },
+        { value: '14', label: 'T = 2¹⁴ entries per level' },
+      ],
+      default: '12',
+      description:
+        'Entries per level of the neural field’s hash tables (2 features each; the CPU fallback uses at most 2¹²). Coarse levels with fewer vertices than T are stored densely, finer ones hashed. Changing it starts afresh.',
+    },
     {
       kind: 'choice',
       name: 'grid',

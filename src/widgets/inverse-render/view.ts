@@ -20,15 +20,19 @@ import { InverseTrainerGpu, KERNEL } from './gpuBackend.ts';
 import {
   CPU_IMAGE_SIZE,
   CPU_MAX_RESOLUTION,
+  CPU_MAX_TABLE_LOG2,
   NOVEL_ELEVATION,
   effectiveBatch,
   hyperFrom,
   problemFrom,
   problemKey,
   viewError,
+  type ModelKind,
   type Problem,
   type Trainer,
 } from './model.ts';
+import { NEURAL_KERNEL, NeuralTrainerGpu } from './neuralGpuBackend.ts';
+import { neuralParameterCount } from '../../reference/neural.ts';
 import type { InverseRenderFrame } from './widget.ts';
 
 /**
@@ -54,6 +58,29 @@ const REGULARIZER_NAMES: Readonly<Record<string, string>> = {
 interface GpuKernel {
   gpu: GpuContext;
 }
+
+/** A finished or running fit, kept so that the other model's curve can be drawn beside it. */
+interface ModelRun {
+  /** What both models share: backend, training views, image size, samples per ray, seed. */
+  key: string;
+  /** Wall time of training (ms) at the end of each iteration, and that iteration's loss. */
+  times: number[];
+  losses: number[];
+  /** Held-out MSE at the redraws: [wall time (ms), MSE]. */
+  novel: [number, number][];
+}
+
+/** The fit's parameters and the model's name for the readouts. */
+export function modelParameters(problem: Problem): number {
+  return problem.model === 'neural'
+    ? neuralParameterCount(problem.tableSize)
+    : 4 * problem.resolution ** 3;
+}
+
+const MODEL_NAMES: Readonly<Record<ModelKind, string>> = {
+  grid: 'voxel grid',
+  neural: 'neural field',
+};
 
 interface RateSample {
   at: number;
@@ -86,6 +113,10 @@ export function createView(
   let targets: ArrayLike<number> = [];
   /** Loss of every iteration so far (before its update). */
   let losses: number[] = [];
+  /** Wall time of training (ms) at the end of each iteration of this run. */
+  let times: number[] = [];
+  /** The latest run of each model (the current one included), for the comparison. */
+  const runs = new Map<ModelKind, ModelRun>();
   /** Held-out MSE measured after n updates, by n. */
   let novelErrors = new Map<number, number>();
   let initialTrainMse = NaN;
@@ -150,7 +181,13 @@ export function createView(
         ? ((latest.iteration - first.iteration) * 1000) / (latest.at - first.at)
         : NaN;
     const iterations = first && latest ? latest.iteration - first.iteration : 0;
+    const other = otherRun(problem);
     return {
+      model: problem.model,
+      parameters: modelParameters(problem),
+      tableSize: problem.tableSize,
+      trainSeconds: (times[times.length - 1] ?? 0) / 1000,
+      comparison: other ? summarize(other) : null,
       iteration,
       budget: budget(),
       lastLoss: losses[losses.length - 1] ?? null,
@@ -172,7 +209,41 @@ export function createView(
       steps: problem.steps,
       rays: effectiveBatch(hyper, problem.trainViews * problem.size * problem.size),
       learningRate: hyper.learningRate,
-      regularizer: REGULARIZER_NAMES[String(context.values['regularizer'])] ?? '',
+      // The priors act on voxels; the neural field is fitted by the data term alone.
+      regularizer:
+        problem.model === 'neural'
+          ? 'no regularizer: the priors act on voxels'
+          : (REGULARIZER_NAMES[String(context.values['regularizer'])] ?? ''),
+    };
+  }
+
+  /** The shared part of a problem, under which the two models' runs are compared. */
+  function comparisonKey(problem: Problem): string {
+    const shared = {
+      views: problem.views.slice(0, problem.trainViews),
+      size: problem.size,
+      steps: problem.steps,
+      seed: problem.seed,
+    };
+    return `${frameBackend.kind}:${JSON.stringify(shared)}`;
+  }
+
+  /** The other model's latest run on the same views, if any. */
+  function otherRun(problem: Problem): ModelRun | null {
+    const other: ModelKind = problem.model === 'neural' ? 'grid' : 'neural';
+    const run = runs.get(other);
+    return run && run.key === comparisonKey(problem) && run.losses.length > 0 ? run : null;
+  }
+
+  function summarize(run: ModelRun): NonNullable<InverseRenderFrame['comparison']> {
+    const recent = run.losses.slice(-10);
+    const novel = run.novel[run.novel.length - 1];
+    return {
+      model: runs.get('grid') === run ? 'grid' : 'neural',
+      iterations: run.losses.length,
+      seconds: (run.times[run.times.length - 1] ?? 0) / 1000,
+      loss: recent.reduce((a, b) => a + b, 0) / recent.length,
+      novelMse: novel ? novel[1] : null,
     };
   }
 
@@ -223,6 +294,9 @@ export function createView(
     trainMse = sum / problem.trainViews;
     const novel = viewError(image, targets, problem.trainViews, pixels);
     novelErrors.set(iteration, novel);
+    const run = runs.get(problem.model);
+    if (run && run.key === comparisonKey(problem))
+      run.novel.push([times[iteration - 1] ?? 0, novel]);
     if (novelFit) paintView(novelFit, image, problem.trainViews, problem.size);
     if (novelError)
       paintError(novelError, image, targets, problem.trainViews, problem.size, ERROR_SCALE_TOP);
@@ -254,6 +328,8 @@ export function createView(
     const problem = created.problem;
     targets = await created.readTargets();
     losses = [];
+    times = [];
+    runs.set(problem.model, { key: comparisonKey(problem), times, losses, novel: [] });
     novelErrors = new Map();
     tenfoldAt = null;
     iteration = 0;
@@ -272,7 +348,7 @@ export function createView(
     initialTrainMse = trainMse;
     trainerKey = key;
     plotLosses();
-    setStatus('Ready: press Start to fit the grid.');
+    setStatus(`Ready: press Start to fit the ${MODEL_NAMES[problem.model]}.`);
     syncButtons();
   }
 
@@ -341,6 +417,9 @@ export function createView(
         if (!live() || current !== trainer) return;
         const done = result.losses.length;
         losses.push(...Array.from(result.losses));
+        // Wall time per iteration within the batch: its share of the batch's wall time.
+        const before = times[times.length - 1] ?? 0;
+        for (let j = 1; j <= done; j++) times.push(before + (lastBatch.milliseconds * j) / done);
         iteration = result.iteration;
         dropped = result.dropped;
         if (done > 0) {
@@ -406,35 +485,74 @@ export function createView(
   }
 
   /**
-   * Loss curve: at x = k the batch loss of iteration k + 1 (the parameters after k
-   * updates) and the held-out error last measured at or before k updates.
+   * Loss against training time (wall seconds): this run's batch loss per iteration and
+   * its held-out error at the redraws, and, when the other model has run on the same
+   * views, its curves too, so that the two models compare per second rather than per
+   * iteration (an iteration of the neural field costs more than one of the grid). The
+   * curves share one x axis (the union of their times); each is drawn across the times
+   * where it has no value.
    */
   function plotLosses(): void {
-    if (!plot || !plotArea || !plotHint) return;
+    if (!plot || !plotArea || !plotHint || !trainer) return;
     // Before the first iteration there is no curve: the hint stands in for the plot.
     const empty = losses.length === 0;
     plotHint.hidden = !empty;
     plotArea.hidden = empty;
     if (empty) return;
+    const problem = trainer.problem;
+    const other = otherRun(problem);
     const log = (value: number): number => Math.log10(Math.max(value, 1e-30));
-    const x = losses.map((_, k) => k);
-    let last = novelErrors.get(0) ?? trainMse;
-    const novel = x.map((k) => {
-      last = novelErrors.get(k) ?? last;
-      return log(last);
-    });
-    plot.update(x, [
-      { label: 'training loss (batch)', color: '#3b7dd8', values: losses.map(log) },
-      { label: 'held-out view', color: '#d8793b', dash: [6, 4], values: novel },
-    ]);
+    const curves: { label: string; color: string; dash?: number[]; points: [number, number][] }[] =
+      [];
+    const add = (run: ModelRun, name: string, colors: [string, string], dash: number[]): void => {
+      curves.push({
+        label: `${name}: training loss`,
+        color: colors[0],
+        ...(dash.length ? { dash } : {}),
+        points: run.losses.map((loss, k) => [run.times[k]!, loss]),
+      });
+      curves.push({
+        label: `${name}: held-out view`,
+        color: colors[1],
+        dash: [6, 4],
+        points: run.novel,
+      });
+    };
+    const current = runs.get(problem.model)!;
+    add(current, MODEL_NAMES[problem.model], ['#3b7dd8', '#d8793b'], []);
+    if (other) {
+      const name = MODEL_NAMES[problem.model === 'neural' ? 'grid' : 'neural'];
+      add(other, `${name} (last run)`, ['#2a9d6f', '#a05bc4'], [2, 3]);
+    }
+    const x = [...new Set(curves.flatMap((c) => c.points.map(([t]) => t)))].sort((a, b) => a - b);
+    const index = new Map(x.map((t, i) => [t, i]));
+    plot.update(
+      x.map((t) => t / 1000),
+      curves.map((curve) => {
+        const values = new Array<number>(x.length).fill(NaN);
+        for (const [t, value] of curve.points) values[index.get(t)!] = log(value);
+        return {
+          label: curve.label,
+          color: curve.color,
+          ...(curve.dash ? { dash: curve.dash } : {}),
+          spanGaps: true,
+          values,
+        };
+      }),
+    );
   }
 
   /** The CPU notice: where the twin runs and at which size. */
   function cpuNotice(): string {
     const problem = problemFrom(context.values, 'cpu');
-    const requested = Number(context.values['grid']);
     const inWorker = trainer instanceof CpuTrainer && trainer.inWorker;
-    return `Fitting with the float64 CPU twin instead${inWorker ? ', in a Web Worker' : ''}, at ${problem.resolution}³ voxels${requested > CPU_MAX_RESOLUTION ? ` (not ${requested}³)` : ''} and ${CPU_IMAGE_SIZE}×${CPU_IMAGE_SIZE} pixels per view.`;
+    const where = `Fitting with the float64 CPU twin instead${inWorker ? ', in a Web Worker' : ''}`;
+    if (problem.model === 'neural') {
+      const requested = Math.round(Number(context.values['table']) || 12);
+      return `${where}, a neural field with 2^${Math.log2(problem.tableSize)} table entries per level${requested > CPU_MAX_TABLE_LOG2 ? ` (not 2^${requested})` : ''} and ${CPU_IMAGE_SIZE}×${CPU_IMAGE_SIZE} pixels per view.`;
+    }
+    const requested = Number(context.values['grid']);
+    return `${where}, at ${problem.resolution}³ voxels${requested > CPU_MAX_RESOLUTION ? ` (not ${requested}³)` : ''} and ${CPU_IMAGE_SIZE}×${CPU_IMAGE_SIZE} pixels per view.`;
   }
 
   return {
@@ -467,13 +585,17 @@ export function createView(
       plotHint = document.createElement('p');
       plotHint.className = 'sb-sweep-hint';
       plotHint.textContent =
-        'Press Start: the loss of every iteration (its batch of rays) and the held-out view’s error appear here, on a logarithmic scale.';
+        'Press Start: the loss of every iteration (its batch of rays) and the held-out view’s error appear here against training time, on a logarithmic scale; the other model’s last run on the same views stays beside them.';
       plotArea = createPlotArea(
-        'Base-10 logarithm of the loss against iteration: training loss and held-out view error',
+        'Base-10 logarithm of the loss against training time: training loss and held-out view error of this model and of the other model’s last run on the same views',
       );
       plotArea.hidden = true;
       // log₁₀ of the error on a linear axis: short tick labels (−1 … −8) over eight decades.
-      plot = new LinePlot(plotArea, { xLabel: 'iteration', yLabel: 'log₁₀ MSE', height: 300 });
+      plot = new LinePlot(plotArea, {
+        xLabel: 'training time (s, wall)',
+        yLabel: 'log₁₀ MSE',
+        height: 300,
+      });
 
       const bar = document.createElement('div');
       bar.className = 'sb-sweep sb-ir-run';
@@ -507,8 +629,12 @@ export function createView(
     async renderGpu(_renderer, gpu) {
       frameBackend = { kind: 'gpu', adapterDescription: gpu.adapterDescription };
       return sync('gpu', async (problem) => {
-        const code = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
-        return InverseTrainerGpu.create(gpu.device, code, problem);
+        const gridCode = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
+        if (problem.model !== 'neural')
+          return InverseTrainerGpu.create(gpu.device, gridCode, problem);
+        // The neural field's targets come from the grid's kernel: the same images.
+        const code = await linkLibraryKernel(STATIC_KERNELS, NEURAL_KERNEL);
+        return NeuralTrainerGpu.create(gpu.device, code, gridCode, problem);
       });
     },
 

@@ -10,6 +10,23 @@ import { INVERSE_RENDER } from './schema.ts';
 
 /** What the readouts and the cost line need from the training's current state. */
 export interface InverseRenderFrame {
+  /** The fitted model: the voxel grid or the neural field (hash grid + MLP). */
+  model: 'grid' | 'neural';
+  /** Learned parameters (f32 each on the GPU). */
+  parameters: number;
+  /** Entries per level of the neural field's hash tables. */
+  tableSize: number;
+  /** Wall time of training so far (s). */
+  trainSeconds: number;
+  /** The other model's latest run on the same views, for the side-by-side comparison. */
+  comparison: {
+    model: 'grid' | 'neural';
+    iterations: number;
+    seconds: number;
+    /** Mean batch loss of its last 10 iterations. */
+    loss: number;
+    novelMse: number | null;
+  } | null;
   iteration: number;
   /** The iteration budget (parameter `iterations`). */
   budget: number;
@@ -44,6 +61,20 @@ export interface InverseRenderFrame {
   regularizer: string;
 }
 
+/** Bytes as KiB or MiB. */
+function formatBytes(bytes: number): string {
+  return bytes >= 1024 * 1024
+    ? `${formatNumber(bytes / (1024 * 1024), 3)} MiB`
+    : `${formatNumber(bytes / 1024, 3)} KiB`;
+}
+
+/** The fitted model in the cost line. */
+function modelText(frame: InverseRenderFrame): string {
+  if (frame.model === 'neural')
+    return `a neural field (hash encoding 8 levels × ${frame.tableSize.toLocaleString('en')} entries × 2 features and an MLP 16–16–4, ${frame.parameters.toLocaleString('en')} parameters)`;
+  return `a ${frame.resolution}³ grid (${frame.parameters.toLocaleString('en')} parameters)`;
+}
+
 /** What the frame cost: the set-up of the problem before training, then the last batch of iterations. */
 function costText(frame: InverseRenderFrame, how: string): string {
   const setup = `set-up (targets and the first render of every view) ${formatMilliseconds(frame.setupMs)} wall time`;
@@ -56,17 +87,47 @@ function costText(frame: InverseRenderFrame, how: string): string {
 export const widget = defineWidget<InverseRenderFrame>({
   entry: INVERSE_RENDER,
   presets: [
-    { label: '8 views, 32³', values: { views: 8, grid: '32', regularizer: 'none' } },
-    { label: '3 views: ambiguity', values: { views: 3, regularizer: 'none' } },
-    { label: '1 view: no depth', values: { views: 1, regularizer: 'none' } },
-    { label: '8 views, 16³: fewer unknowns', values: { views: 8, grid: '16' } },
+    {
+      label: '8 views, 32³',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 8, grid: '32', regularizer: 'none' },
+    },
+    {
+      label: '3 views: ambiguity',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 3, regularizer: 'none' },
+    },
+    {
+      label: '1 view: no depth',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 1, regularizer: 'none' },
+    },
+    {
+      label: '8 views, 16³: fewer unknowns',
+      values: { model: 'grid', rate: 0.05, batch: 1024, views: 8, grid: '16' },
+    },
     {
       label: '8 views + smoothness prior',
-      values: { views: 8, regularizer: 'tv', weight: 0.001 },
+      values: {
+        model: 'grid',
+        rate: 0.05,
+        batch: 1024,
+        views: 8,
+        regularizer: 'tv',
+        weight: 0.001,
+      },
     },
     {
       label: '8 views + sparsity prior',
-      values: { views: 8, regularizer: 'sparsity', weight: 0.003 },
+      values: {
+        model: 'grid',
+        rate: 0.05,
+        batch: 1024,
+        views: 8,
+        regularizer: 'sparsity',
+        weight: 0.003,
+      },
+    },
+    {
+      label: '8 views, neural field (hash grid + MLP)',
+      values: { model: 'neural', views: 8, table: '12', rate: 0.05, batch: 512 },
     },
   ],
   readouts: {
@@ -107,6 +168,30 @@ export const widget = defineWidget<InverseRenderFrame>({
             : `${formatNumber(frame.novelMse, 3)} (${formatNumber(10 * Math.log10(1 / frame.novelMse), 3)} dB)`,
       },
       {
+        key: 'memory',
+        label: 'Model size',
+        format: (frame) =>
+          `${frame.parameters.toLocaleString('en')} parameters, ${formatBytes(4 * frame.parameters)} (${
+            frame.model === 'neural'
+              ? `hash tables 8 × ${frame.tableSize.toLocaleString('en')} × 2 + MLP 340`
+              : `grid ${frame.resolution}³ × 4`
+          })`,
+      },
+      {
+        key: 'comparison',
+        label: 'Other model, last run on these views',
+        format: (frame) => {
+          const other = frame.comparison;
+          if (!other) return `none yet: switch the model to compare`;
+          const name = other.model === 'neural' ? 'neural field' : 'voxel grid';
+          const psnr =
+            other.novelMse === null
+              ? ''
+              : `, held-out PSNR ${formatNumber(10 * Math.log10(1 / other.novelMse), 3)} dB`;
+          return `${name}: loss ${formatNumber(other.loss, 3)} after ${other.iterations} iterations in ${formatNumber(other.seconds, 3)} s${psnr}`;
+        },
+      },
+      {
         key: 'rate',
         label: 'Iterations per second',
         format: (frame) =>
@@ -135,7 +220,7 @@ export const widget = defineWidget<InverseRenderFrame>({
     ],
     cost: (frame) => frame.cost,
     costLine: (frame, how, backend) =>
-      `${backend.kind === 'cpu' ? 'the float64 twin, ' : ''}a ${frame.resolution}³ grid (${(4 * frame.resolution ** 3).toLocaleString('en')} parameters), ${frame.trainViews} training view${frame.trainViews === 1 ? '' : 's'} of ${frame.size}×${frame.size} pixels; each iteration marches ${frame.rays} rays × ${frame.steps} samples forward and backward, then Adam (η = ${frame.learningRate}, ${frame.regularizer}). ${
+      `${backend.kind === 'cpu' ? 'the float64 twin, ' : ''}${modelText(frame)}, ${frame.trainViews} training view${frame.trainViews === 1 ? '' : 's'} of ${frame.size}×${frame.size} pixels; each iteration marches ${frame.rays} rays × ${frame.steps} samples forward and backward, then Adam (η = ${frame.learningRate}, ${frame.regularizer}). ${
         Number.isFinite(frame.rate) && frame.rate > 0
           ? `${formatNumber(frame.rate, 3)} iterations/s. `
           : ''
@@ -162,6 +247,19 @@ export const widget = defineWidget<InverseRenderFrame>({
       },
       caption:
         'With three cameras the fit explains its images almost perfectly, yet the held-out view stays wrong: many volumes produce the same three pictures. The loss curve and the held-out error part ways.',
+      chapter: '08-inverse-volume-rendering',
+    },
+    {
+      title: 'A neural field: hash grid + tiny MLP',
+      attributes: {
+        model: 'neural',
+        views: '8',
+        table: '12',
+        rate: '0.05',
+        batch: '512',
+      },
+      caption:
+        'The same eight images, fitted by Instant-NGP’s multiresolution hash encoding and an MLP of 16 hidden units: 65,876 parameters, half the 32³ grid’s. Run the grid first, then this: the plot keeps both loss curves against time.',
       chapter: '08-inverse-volume-rendering',
     },
   ],
