@@ -127,7 +127,9 @@ export function setupDeck(): void {
     contentTimer = setTimeout(() => {
       const figure = figureOf(slides[index]);
       if (!figure || sizesOf(figure) === fittedSizes) return;
-      if (fitted.matches && stillFits(...figure)) fittedSizes = sizesOf(figure);
+      // A scroll region whose contents shrank is refitted: it may fit again, larger.
+      const scrolls = figure[1].classList.contains('deck-figure--scrolls');
+      if (fitted.matches && !scrolls && stillFits(...figure)) fittedSizes = sizesOf(figure);
       else fit();
     }, CONTENT_SETTLE_MS);
   };
