@@ -40,6 +40,25 @@ function isTyping(target: EventTarget | null): boolean {
   );
 }
 
+/**
+ * A figure that does not fit its slide even at the smallest readable zoom scrolls
+ * inside its box (never over the caption): a labelled region that the keyboard can
+ * focus and scroll, so that what lies below the fold is still reachable.
+ */
+function scrollRegion(slide: HTMLElement, box: HTMLElement, on: boolean): void {
+  box.classList.toggle('deck-figure--scrolls', on);
+  if (on) {
+    const title = slide.querySelector('.deck-title')?.textContent?.replace(/^\s*\d+\s*/, '');
+    box.setAttribute('role', 'region');
+    box.setAttribute('aria-label', `${title?.trim() || 'Figure'} (scrolls)`);
+    box.tabIndex = 0;
+  } else {
+    box.removeAttribute('role');
+    box.removeAttribute('aria-label');
+    box.removeAttribute('tabindex');
+  }
+}
+
 export function setupDeck(): void {
   const deck = document.querySelector<HTMLElement>('main.deck');
   if (!deck) return;
@@ -78,9 +97,13 @@ export function setupDeck(): void {
       const result = fitToBox(...figure);
       // Read by the deck's end-to-end test, and handy when tuning a slide.
       slide.dataset['fit'] =
-        `${result.fits ? 'fits' : 'overflows'} zoom=${result.zoom} stage=${result.stage} ` +
-        `width=${result.width} in ${Math.round(performance.now() - start)} ms`;
-    } else unfit(figure[0]);
+        `${result.fits ? 'fits' : `scrolls by ${result.overflow} px at`} zoom=${result.zoom} ` +
+        `stage=${result.stage} width=${result.width} in ${Math.round(performance.now() - start)} ms`;
+      scrollRegion(slide, figure[1], !result.fits);
+    } else {
+      unfit(figure[0]);
+      scrollRegion(slide, figure[1], false);
+    }
     fittedSizes = sizesOf(figure);
   };
   let fitFrame = 0;
@@ -104,7 +127,9 @@ export function setupDeck(): void {
     contentTimer = setTimeout(() => {
       const figure = figureOf(slides[index]);
       if (!figure || sizesOf(figure) === fittedSizes) return;
-      if (fitted.matches && stillFits(...figure)) fittedSizes = sizesOf(figure);
+      // A scroll region whose contents shrank is refitted: it may fit again, larger.
+      const scrolls = figure[1].classList.contains('deck-figure--scrolls');
+      if (fitted.matches && !scrolls && stillFits(...figure)) fittedSizes = sizesOf(figure);
       else fit();
     }, CONTENT_SETTLE_MS);
   };

@@ -14,20 +14,28 @@
 // Each probe is one synchronous layout of one figure (the browser paints only the
 // last), and a heavy widget's layout is not free, so the search is short: the stage
 // share that leaves the figure shortest at full size, then the largest zoom for it
-// by bisection, then narrower widths only if that is not enough.
-
+// by bisection, then narrower widths only while the zoom is below what a room reads
+// comfortably (READABLE_ZOOM): a narrower figure has smaller canvases but taller text,
+// so narrowing helps some widgets and hurts others, and the search keeps whichever
+// width gave the largest zoom. A figure that overflows even at MIN_ZOOM keeps the
+// width with the least overflow (not the narrowest), and the deck makes its box a
+// scroll region rather than let it run over the caption (deck.ts).
 export const STAGE_SHARES = ['1.3fr', '1.1fr', '0.9fr', '0.75fr', '0.6fr'] as const;
 export const WIDTHS = [0.85, 0.7, 0.55] as const;
 export const MIN_ZOOM = 0.6;
+/** A zoom a room reads without effort: below it, narrower widths are tried too. */
+export const READABLE_ZOOM = 0.7;
 
 export interface Fit {
   zoom: number;
   stage: string;
   width: number;
   fits: boolean;
+  /** How far the figure runs past its box at this layout, in px (0 when it fits). */
+  overflow: number;
 }
 
-type Layout = Omit<Fit, 'fits'>;
+type Layout = Omit<Fit, 'fits' | 'overflow'>;
 
 function apply(content: HTMLElement, layout: Layout): void {
   content.style.zoom = layout.zoom === 1 ? '' : String(layout.zoom);
@@ -46,18 +54,28 @@ function overflow(content: HTMLElement, box: HTMLElement, layout: Layout): numbe
   );
 }
 
-/** The largest zoom in [MIN_ZOOM, 1] at which the layout fits, or null. */
-function largestZoom(content: HTMLElement, box: HTMLElement, layout: Layout): number | null {
-  if (overflow(content, box, { ...layout, zoom: 1 }) <= 0) return 1;
-  if (overflow(content, box, { ...layout, zoom: MIN_ZOOM }) > 0) return null;
-  let low = MIN_ZOOM;
+/**
+ * The largest zoom in [floor, 1] at which the layout fits, or null with the overflow
+ * at `floor` (floor ≥ MIN_ZOOM: a zoom already found elsewhere need not be beaten by
+ * less).
+ */
+function largestZoom(
+  content: HTMLElement,
+  box: HTMLElement,
+  layout: Layout,
+  floor: number,
+): { zoom: number } | { zoom: null; overflow: number } {
+  if (overflow(content, box, { ...layout, zoom: 1 }) <= 0) return { zoom: 1 };
+  const atFloor = overflow(content, box, { ...layout, zoom: floor });
+  if (atFloor > 0) return { zoom: null, overflow: atFloor };
+  let low = floor;
   let high = 1;
   for (let i = 0; i < 5; i++) {
     const middle = (low + high) / 2;
     if (overflow(content, box, { ...layout, zoom: middle }) <= 0) low = middle;
     else high = middle;
   }
-  return Math.floor(low * 100) / 100;
+  return { zoom: Math.floor(low * 100) / 100 };
 }
 
 /** Chooses and applies the most readable layout of `content` that fits `box`. */
@@ -65,30 +83,38 @@ export function fitToBox(content: HTMLElement, box: HTMLElement): Fit {
   const full: Layout = { zoom: 1, stage: STAGE_SHARES[1], width: 1 };
   if (box.getBoundingClientRect().height <= 0) {
     apply(content, full);
-    return { ...full, fits: false };
+    return { ...full, fits: false, overflow: 0 };
   }
   // The stage share that leaves the least overflow at full size (the largest on a tie).
-  let best: Layout = { ...full, stage: STAGE_SHARES[0] };
+  let stageShare: Layout = { ...full, stage: STAGE_SHARES[0] };
   let bestOverflow = Infinity;
   for (const stage of STAGE_SHARES) {
     const excess = Math.max(0, overflow(content, box, { ...full, stage }));
     if (excess < bestOverflow - 1) {
-      best = { ...full, stage };
+      stageShare = { ...full, stage };
       bestOverflow = excess;
     }
     if (excess <= 0) break;
   }
+  let fitted: Layout | null = null;
+  // Without a fit: the width that overflows least at MIN_ZOOM (the wider on a tie).
+  let leastOverflow: { layout: Layout; overflow: number } | null = null;
   for (const width of [1, ...WIDTHS]) {
-    const layout = { ...best, width };
-    const zoom = largestZoom(content, box, layout);
-    if (zoom !== null) {
-      apply(content, { ...layout, zoom });
-      return { ...layout, zoom, fits: true };
-    }
+    const layout = { ...stageShare, width };
+    const found = largestZoom(content, box, layout, fitted ? fitted.zoom + 0.01 : MIN_ZOOM);
+    if (found.zoom !== null) {
+      if (!fitted || found.zoom > fitted.zoom) fitted = { ...layout, zoom: found.zoom };
+    } else if (!fitted && (!leastOverflow || found.overflow < leastOverflow.overflow - 1))
+      leastOverflow = { layout: { ...layout, zoom: MIN_ZOOM }, overflow: found.overflow };
+    if (fitted && fitted.zoom >= READABLE_ZOOM) break;
   }
-  const last = { ...best, width: WIDTHS[WIDTHS.length - 1] ?? 1, zoom: MIN_ZOOM };
-  apply(content, last);
-  return { ...last, fits: false };
+  if (fitted) {
+    apply(content, fitted);
+    return { ...fitted, fits: true, overflow: 0 };
+  }
+  const last = leastOverflow ?? { layout: { ...stageShare, zoom: MIN_ZOOM }, overflow: 0 };
+  apply(content, last.layout);
+  return { ...last.layout, fits: false, overflow: Math.round(last.overflow) };
 }
 
 /**
