@@ -938,13 +938,115 @@ export function estimatePathTracing(
   return radiance;
 }
 
+// The one-medium estimators (plan condition oneHomogeneousMedium: one homogeneous medium
+// under delta lights, nothing else in the scene). Written from the closed forms of
+// physics.md §5 and the path-tracing recursion, not from the general code: at a point x
+// of the medium, next-event estimation gives Σ_ℓ p(ω_o, ω_ℓ) E_ℓ e^{−σt d_ℓ}, with d_ℓ
+// the length of the shadow ray inside the medium. They must draw the same random
+// numbers, in the same order, as the general estimators for such a scene, and
+// tests/reference/scene-one-medium.test.ts holds the two equal sample by sample.
+
+export function oneMediumDirectLighting(
+  scene: SceneData,
+  medium: SceneMedium,
+  position: Vec3,
+  wo: Vec3,
+): Rgb {
+  const sigmaT = add(medium.sigmaA, medium.sigmaS);
+  let radiance: Rgb = [0, 0, 0];
+  const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
+  for (let i = 0; i < count; i++) {
+    const light = deltaLightSample(scene, sceneLight(scene, i), position);
+    const phase = mediumPhaseEval(scene, medium, wo, light.direction);
+    const unshadowed = light.irradiance.map((e) => e * phase) as Rgb;
+    if (!anyPositive(unshadowed)) continue;
+    const [enter, exit] = mediumSegment(medium, position, light.direction, 0, light.distance);
+    const shadow = enter < exit ? transmittanceBeer(sigmaT, exit - enter) : ([1, 1, 1] as Rgb);
+    radiance = add(radiance, mul(unshadowed, shadow));
+  }
+  return radiance;
+}
+
+/**
+ * Single scattering in one homogeneous medium: one point t = t₀ + s of the view segment,
+ * s drawn from the exponential of the mean σt truncated to the segment's length, weighted
+ * T(s)·σs / pdf(s) and lit by oneMediumDirectLighting.
+ */
+export function estimateSingleScatteringOneMedium(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  state: RngState,
+): Rgb {
+  const medium = sceneMedium(scene, 0);
+  const [enter, exit] = mediumSegment(medium, origin, direction, 0, RAY_T_LIMIT);
+  const length = exit - enter;
+  const scatters = sceneHeader(scene)[3] >= 1 && anyPositive(medium.sigmaS);
+  if (!(enter < exit) || !scatters || length < TRUNCATED_EXPONENTIAL_MIN_LENGTH) return [0, 0, 0];
+  const sigmaT = add(medium.sigmaA, medium.sigmaS);
+  const rate = averageComponent(sigmaT);
+  const s = sampleTruncatedExponential(rate, length, rngNextFloat(state));
+  const weight = scale(
+    mul(transmittanceBeer(sigmaT, s), medium.sigmaS),
+    1 / truncatedExponentialPdf(rate, length, s),
+  );
+  return mul(
+    weight,
+    oneMediumDirectLighting(scene, medium, at(origin, direction, enter + s), neg(direction)),
+  );
+}
+
+/**
+ * Volumetric path tracing in one homogeneous medium: free flights (mediumFreeFlight),
+ * next-event estimation at every scattering vertex, phase sampling and Russian roulette;
+ * a path that leaves the medium escapes (the scene has no environment and no surface).
+ */
+export function estimatePathTracingOneMedium(
+  scene: SceneData,
+  origin: Vec3,
+  direction: Vec3,
+  state: RngState,
+): Rgb {
+  const maxOrder = sceneHeader(scene)[3];
+  const medium = sceneMedium(scene, 0);
+  let radiance: Rgb = [0, 0, 0];
+  let weight: Rgb = [1, 1, 1];
+  let rayOrigin = origin;
+  let rayDirection = direction;
+  for (let order = 1; order <= PATH_MAX_VERTICES; order++) {
+    const segment = mediumSegment(medium, rayOrigin, rayDirection, 0, RAY_T_LIMIT);
+    if (!(segment[0] < segment[1])) return radiance;
+    const flight = mediumFreeFlight(scene, medium, rayOrigin, rayDirection, segment, weight, state);
+    weight = flight.weight;
+    if (flight.event !== FLIGHT_SCATTERED || order > maxOrder) return radiance;
+    const position = at(rayOrigin, rayDirection, flight.t);
+    const wo = neg(rayDirection);
+    radiance = add(radiance, mul(weight, oneMediumDirectLighting(scene, medium, position, wo)));
+    rayDirection = mediumPhaseSample(scene, medium, wo, [rngNextFloat(state), rngNextFloat(state)]);
+    rayOrigin = position;
+    const survival = Math.min(maxComponent(weight), 1);
+    if (survival < 1) {
+      if (!(rngNextFloat(state) < survival)) return radiance;
+      weight = scale(weight, 1 / survival);
+    }
+  }
+  scene.stats.capped += 1;
+  return radiance;
+}
+
 export function estimateRadiance(
   scene: SceneData,
   origin: Vec3,
   direction: Vec3,
   state: RngState,
 ): Rgb {
-  if (on(scene, 'pathTracing')) return estimatePathTracing(scene, origin, direction, state);
+  const oneMedium = on(scene, 'oneHomogeneousMedium');
+  if (on(scene, 'pathTracing'))
+    return oneMedium
+      ? estimatePathTracingOneMedium(scene, origin, direction, state)
+      : estimatePathTracing(scene, origin, direction, state);
+  if (on(scene, 'volumeScattering') && oneMedium && !on(scene, 'equiangular'))
+    return estimateSingleScatteringOneMedium(scene, origin, direction, state);
   if (on(scene, 'volumeScattering') || on(scene, 'surfaceScattering'))
     return estimateSingleScattering(scene, origin, direction, state);
   return estimateEmissionAbsorption(scene, origin, direction, state);
