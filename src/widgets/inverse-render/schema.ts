@@ -7,7 +7,7 @@ import type { WidgetEntry } from '../parameters.ts';
 
 export const INVERSE_RENDER: WidgetEntry = {
   name: 'inverse-render',
-  title: 'Inverse volume rendering: fitting a grid to images',
+  title: 'Inverse volume rendering: fitting a grid or a neural field to images',
   description:
     'Images of a hidden volume from several views are the data. A grid of raw density and emission (σt = 10·softplus(ρ), colour = sigmoid(e), trilinear) is fitted to them by Adam, with the gradient of the emission–absorption ray marcher computed on the GPU; or a neural field (a multiresolution hash encoding and a small MLP, as in Instant-NGP) is fitted to the same images. The widget shows the target and current views, a held-out view with its error, the loss curve, iterations per second and GPU time per iteration.',
   parameters: [
