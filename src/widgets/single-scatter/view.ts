@@ -15,7 +15,6 @@ import {
 } from '../../scene/accumulationView.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
-import { BackgroundRefinement } from '../../scene/backgroundRefinement.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene, type ResolvedScene } from '../../scene/load.ts';
@@ -181,13 +180,9 @@ export function createView(
   let views: { device: GPUDevice; image: AccumulationView; error: AccumulationView } | null = null;
   const kernelTimes = new Map<string, KernelTimes>();
   let remeasure = false;
-  /** Whether the last frame left work (image, reference or timing) for the next. */
-  let moreWork = false;
-  const background = new BackgroundRefinement<SingleScatterFrame>(context);
   const resolvedCache = new Map<string, Promise<ResolvedScene>>();
 
   const disposeRun = (): void => {
-    background.stop();
     run?.main.renderer.destroy();
     for (const snapshot of run?.snapshots ?? []) snapshot.image.destroy();
     run = null;
@@ -518,11 +513,12 @@ export function createView(
             ? ''
             : `, reference ${reference.renderer.accumulation.samples} of ${referenceTarget}`
         }`,
-        pending: null,
+        // Complete: while this frame had work (image, reference or timing), the next
+        // frames go on with it as background refinement of a settled picture.
+        pending: busy ? 'background' : null,
       },
     );
     if (started !== generation || request.signal.aborted) return null;
-    moreWork = busy;
     return result;
   };
 
@@ -546,21 +542,8 @@ export function createView(
   ): Promise<SingleScatterFrame | null> => {
     // Captured: the context's signal is a fresh one once the widget is destroyed.
     const signal = context.signal;
-    // The accumulation past the preview stops here (its frame in flight lands first).
-    await background.halt();
     try {
-      const inputs = inputsFrom(context.values);
-      const result = await frame(inputs, backend, request);
-      const current = run;
-      if (result?.stage.pending === null && moreWork) {
-        // The image, the reference and the kernel timing go on by themselves, a pass per
-        // frame, each reported without unsettling the widget.
-        background.start(
-          (stepSignal) => frame(inputs, backend, { signal: stepSignal }),
-          () => run === current && moreWork,
-        );
-      }
-      return result;
+      return await frame(inputsFrom(context.values), backend, request);
     } catch (error) {
       // Destroyed mid-frame (its renderers released under it), or a stale frame given up.
       if (signal.aborted || request.signal.aborted) return null;

@@ -11,7 +11,6 @@ import type { Accumulation, ImageStatistics } from '../../scene/accumulation.ts'
 import { AccumulationView, canvasForContext } from '../../scene/accumulationView.ts';
 import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
-import { BackgroundRefinement } from '../../scene/backgroundRefinement.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene } from '../../scene/load.ts';
@@ -162,7 +161,6 @@ export function createView(
   let paused = false;
   let run: Run | null = null;
   const references = new Map<string, ReferenceJob>();
-  const background = new BackgroundRefinement<VolumePathTracerFrame>(context);
 
   const dropViews = (): void => {
     for (const order of ORDERS) views[order]?.view.destroy();
@@ -170,7 +168,6 @@ export function createView(
   };
 
   const discardRun = (): void => {
-    background.stop();
     if (!run) return;
     for (const order of ORDERS) {
       const image = run.images[order];
@@ -630,8 +627,6 @@ export function createView(
     const signal = context.signal;
     const inputs = inputsFrom(context.values);
     const key = `${backend.kind}|${sceneKey(inputs)}`;
-    // The accumulation past full quality stops here (its frame in flight lands first).
-    await background.halt();
     try {
       if (run?.key !== key) {
         discardRun();
@@ -644,18 +639,8 @@ export function createView(
       const current = run;
       const result = await advance(backend, current, request.signal);
       if (!result || request.signal.aborted) return null;
-      if (result.stage.pending === null) {
-        // Full quality: the images and the reference go on refining by themselves, a
-        // frame at a time, each reported without unsettling the widget.
-        background.start(
-          async (stepSignal) => {
-            if (run !== current) return null;
-            return advance(backend, current, stepSignal);
-          },
-          () => run === current && !paused && hasWork(current),
-        );
-        if (backend.kind === 'gpu') warmOtherScene(backend.gpu, inputs);
-      }
+      if (result.stage.pending !== 'frame' && backend.kind === 'gpu')
+        warmOtherScene(backend.gpu, inputs);
       return result;
     } catch (error) {
       // Destroyed mid-frame (its renderers released under it), or a stale frame given up.
@@ -692,12 +677,15 @@ export function createView(
     const stage = (samples: number): Refinement => {
       if (samples < perFrame && !paused)
         return { label: `Preview: ${samples} of ${perFrame} spp`, pending: 'frame' };
+      // Complete for the reader's spp: the images (and the reference) go on refining as
+      // background frames, settled, until both are done or the reader pauses.
+      const more = !paused && hasWork(current);
       const done = samples >= budget.maxSpp;
       return {
         label: done
           ? `${samples} spp, done`
-          : `${samples} spp${paused ? ', paused' : `, accumulating to ${budget.maxSpp}`}`,
-        pending: null,
+          : `${samples} of ${budget.maxSpp} spp${paused ? ', paused' : ''}`,
+        pending: more ? 'background' : null,
       };
     };
     return collect(current, backend, !preview, stale, stage);
