@@ -224,23 +224,32 @@ export function createView(
 
   /**
    * Median time per sample per pixel of the plan's kernel and of the general kernel on
-   * the same scene, pass size and seed, alternating so that both see the same load.
+   * the same scene, pass size and seed, alternating so that both see the same load. It
+   * runs in a background frame: an input stops it between passes (`signal`), so the
+   * new picture does not wait for the remaining repeats.
    */
   const timeKernels = async (
     inputs: SingleScatterInputs,
     backend: Backend<GpuContext>,
     width: number,
     height: number,
+    signal: AbortSignal,
   ): Promise<KernelTimes> => {
     const resolved = await resolve(inputs, IMAGE_SEED, width, height);
     const specialized = await makeRenderer(backend, resolved, plan(resolved.scene).conditions);
-    const general = await makeRenderer(backend, resolved, GENERAL_CONDITIONS);
+    let general: PassRenderer | null = null;
     const samples = backend.kind === 'gpu' ? Math.max(TIMING_SAMPLES, run?.main.perPass ?? 1) : 2;
     const planTimes: number[] = [];
     const generalTimes: number[] = [];
     let timing: PassTiming = specialized.timing;
     try {
+      signal.throwIfAborted();
+      // The general kernel compiles here, in the background, on first use (it used to be
+      // compiled ahead at the first preview, where the compile held up the next input's
+      // picture: bench/firstPictureProbe.ts).
+      general = await makeRenderer(backend, resolved, GENERAL_CONDITIONS);
       for (let i = 0; i < TIMING_REPEATS; i++) {
+        signal.throwIfAborted();
         // Different samples in each repeat, the same ones for both kernels.
         const a = await specialized.renderPass(i * samples, samples);
         const b = await general.renderPass(i * samples, samples);
@@ -258,7 +267,7 @@ export function createView(
       };
     } finally {
       specialized.destroy();
-      general.destroy();
+      general?.destroy();
     }
   };
 
@@ -467,7 +476,6 @@ export function createView(
     const referenceTarget = REFERENCE_FACTOR * target;
     let reference = references.get(key);
     if (preview) {
-      if (backend.kind === 'gpu') warmGeneralKernel(backend.gpu);
       const result = await collect(current, reference ?? null, target, referenceTarget, null, {
         label: `Preview: ${current.main.renderer.accumulation.samples} of ${target} spp`,
         pending: 'frame',
@@ -496,7 +504,7 @@ export function createView(
     if (referenceDone && (remeasure || !kernelTimes.has(key)) && !request.signal.aborted) {
       remeasure = false;
       context.setReadout('saved', 'timing both kernels…');
-      const times = await timeKernels(inputs, backend, width, height);
+      const times = await timeKernels(inputs, backend, width, height, request.signal);
       if (started !== generation) return null;
       kernelTimes.set(key, times);
     }
@@ -520,20 +528,6 @@ export function createView(
     );
     if (started !== generation || request.signal.aborted) return null;
     return result;
-  };
-
-  /** Devices whose general kernel (the timing's comparison) is compiled or compiling. */
-  const warmed = new WeakSet<GPUDevice>();
-  /**
-   * Compiles the general kernel in the background after the first picture: the kernel
-   * timing after the reference then does not stall a frame for the compiler.
-   */
-  const warmGeneralKernel = (gpu: GpuContext): void => {
-    if (warmed.has(gpu.device)) return;
-    warmed.add(gpu.device);
-    void GpuSceneRenderer.prepare(gpu.device, STATIC_KERNELS, GENERAL_CONDITIONS).catch(
-      () => undefined,
-    );
   };
 
   const renderOn = async (

@@ -598,9 +598,13 @@ export function createView(
   /** Kernel variants compiled ahead for the other medium, once per device. */
   const warmed = new WeakSet<GPUDevice>();
   /**
-   * After the first settled picture, links and compiles the kernels of the other medium
-   * (grid or homogeneous) in the background: switching to it then draws its preview at
-   * once instead of waiting seconds for a compile (the pipelines are cached per device).
+   * Once the run has nothing more to do (accumulation and reference done, or paused),
+   * links and compiles the kernels of the other medium (grid or homogeneous): switching
+   * to it then draws its preview at once instead of waiting seconds for a compile (the
+   * pipelines are cached per device). Not earlier: a compile in flight holds up every
+   * later GPU call of the page (measured with bench/firstPictureProbe.ts on SwiftShader:
+   * the two kernels started 0.4 s before an albedo change delayed its first GPU call by
+   * 1.5 s, first picture 2.9 s), and a reader usually moves a slider first.
    */
   const warmOtherScene = (gpu: GpuContext, inputs: PathTracerInputs): void => {
     if (warmed.has(gpu.device)) return;
@@ -639,7 +643,7 @@ export function createView(
       const current = run;
       const result = await advance(backend, current, request.signal);
       if (!result || request.signal.aborted) return null;
-      if (result.stage.pending !== 'frame' && backend.kind === 'gpu')
+      if (result.stage.pending === null && backend.kind === 'gpu')
         warmOtherScene(backend.gpu, inputs);
       return result;
     } catch (error) {
