@@ -13,7 +13,7 @@ import {
   canvasForContext,
   type AccumulationPicture,
 } from '../../scene/accumulationView.ts';
-import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
+import { WorkerSceneRenderer } from '../../scene/workerRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
@@ -36,6 +36,8 @@ import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { siteUrl } from '../base/siteUrl.ts';
 import { logLogSlope } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import type { jobs } from './jobs.ts';
 import {
   CPU_HEIGHT,
   CPU_SPP_CAP,
@@ -118,19 +120,26 @@ const median = (values: number[]): number => {
   return sorted[Math.floor(sorted.length / 2)]!;
 };
 
+/** The CPU twin's passes run in the compute worker (jobs.ts), off the page's thread. */
+const cpuJobs = workerJobs<typeof jobs>('single-scatter');
+
 async function makeRenderer(
   backend: Backend<GpuContext>,
   resolved: ResolvedScene,
   conditions: Conditions,
+  /** The signal a CPU pass listens to: the input signal of the moment it is asked for. */
+  inputSignal: () => AbortSignal,
 ): Promise<PassRenderer> {
   const packed = packScene(resolved);
   if (backend.kind === 'gpu')
     return GpuSceneRenderer.create(backend.gpu.device, STATIC_KERNELS, packed, conditions);
-  return new CpuSceneRenderer(
+  return new WorkerSceneRenderer(
+    cpuJobs,
     sceneData(packed, conditions),
     packed.width,
     packed.height,
     packed.seed,
+    inputSignal,
   );
 }
 
@@ -181,6 +190,7 @@ export function createView(
   const kernelTimes = new Map<string, KernelTimes>();
   let remeasure = false;
   const resolvedCache = new Map<string, Promise<ResolvedScene>>();
+  const inputSignal = (): AbortSignal => context.inputSignal;
 
   const disposeRun = (): void => {
     run?.main.renderer.destroy();
@@ -236,7 +246,12 @@ export function createView(
     signal: AbortSignal,
   ): Promise<KernelTimes> => {
     const resolved = await resolve(inputs, IMAGE_SEED, width, height);
-    const specialized = await makeRenderer(backend, resolved, plan(resolved.scene).conditions);
+    const specialized = await makeRenderer(
+      backend,
+      resolved,
+      plan(resolved.scene).conditions,
+      inputSignal,
+    );
     let general: PassRenderer | null = null;
     const samples = backend.kind === 'gpu' ? Math.max(TIMING_SAMPLES, run?.main.perPass ?? 1) : 2;
     const planTimes: number[] = [];
@@ -247,7 +262,7 @@ export function createView(
       // The general kernel compiles here, in the background, on first use (it used to be
       // compiled ahead at the first preview, where the compile held up the next input's
       // picture: bench/firstPictureProbe.ts).
-      general = await makeRenderer(backend, resolved, GENERAL_CONDITIONS);
+      general = await makeRenderer(backend, resolved, GENERAL_CONDITIONS, inputSignal);
       for (let i = 0; i < TIMING_REPEATS; i++) {
         signal.throwIfAborted();
         // Different samples in each repeat, the same ones for both kernels.
@@ -422,7 +437,7 @@ export function createView(
       const started = generation;
       const resolved = await resolve(inputs, IMAGE_SEED, width, height);
       const scenePlan = plan(resolved.scene);
-      const renderer = await makeRenderer(backend, resolved, scenePlan.conditions);
+      const renderer = await makeRenderer(backend, resolved, scenePlan.conditions, inputSignal);
       if (started !== generation) {
         renderer.destroy();
         context.scheduleRender();
@@ -484,7 +499,12 @@ export function createView(
     }
     if (!reference) {
       const resolved = await resolve(inputs, REFERENCE_SEED, width, height);
-      const renderer = await makeRenderer(backend, resolved, plan(resolved.scene).conditions);
+      const renderer = await makeRenderer(
+        backend,
+        resolved,
+        plan(resolved.scene).conditions,
+        inputSignal,
+      );
       if (started !== generation) {
         renderer.destroy();
         context.scheduleRender();

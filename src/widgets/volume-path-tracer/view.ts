@@ -9,7 +9,7 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import type { Accumulation, ImageStatistics } from '../../scene/accumulation.ts';
 import { AccumulationView, canvasForContext } from '../../scene/accumulationView.ts';
-import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
+import { WorkerSceneRenderer } from '../../scene/workerRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
@@ -23,6 +23,8 @@ import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { logLogSlope, mergeSeries, type SweepPoint } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import type { jobs } from './jobs.ts';
 import {
   CPU_BUDGET,
   GPU_BUDGET,
@@ -103,6 +105,8 @@ const REFERENCE_FRAME_MS = 120;
  * rest is the display passes, the statistics and the page's own frame.
  */
 const PREVIEW_SHARE = 0.6;
+/** Time the image passes of one background frame may take (both orders together, ms). */
+const BACKGROUND_FRAME_MS = 60;
 
 /** Frees a cached reference: its renderers while unfinished, else its moments. */
 function destroyReference(job: ReferenceJob): void {
@@ -110,12 +114,17 @@ function destroyReference(job: ReferenceJob): void {
   else for (const order of ORDERS) job.accumulations[order].destroy();
 }
 
+/** The CPU twin's passes run in the compute worker (jobs.ts), off the page's thread. */
+const cpuJobs = workerJobs<typeof jobs>('volume-path-tracer');
+
 async function makeRenderer(
   backend: Backend<GpuContext>,
   inputs: PathTracerInputs,
   order: Order,
   budget: Budget,
   seed: number,
+  /** The signal a CPU pass listens to: the input signal of the moment it is asked for. */
+  inputSignal: () => AbortSignal,
 ): Promise<{ renderer: PassRenderer; plan: Plan }> {
   const scene = buildScene(
     inputs,
@@ -134,11 +143,13 @@ async function makeRenderer(
           packed,
           scenePlan.conditions,
         )
-      : new CpuSceneRenderer(
+      : new WorkerSceneRenderer(
+          cpuJobs,
           sceneData(packed, scenePlan.conditions),
           packed.width,
           packed.height,
           packed.seed,
+          inputSignal,
         );
   return { renderer, plan: scenePlan };
 }
@@ -161,6 +172,7 @@ export function createView(
   let paused = false;
   let run: Run | null = null;
   const references = new Map<string, ReferenceJob>();
+  const inputSignal = (): AbortSignal => context.inputSignal;
 
   const dropViews = (): void => {
     for (const order of ORDERS) views[order]?.view.destroy();
@@ -236,8 +248,8 @@ export function createView(
     // Both images' kernels link and compile side by side; the reference waits until the
     // first picture is up (referenceFor), so a new scene shows something at once.
     const made = await Promise.allSettled([
-      makeRenderer(backend, inputs, 'single', budget, IMAGE_SEED),
-      makeRenderer(backend, inputs, 'multiple', budget, IMAGE_SEED),
+      makeRenderer(backend, inputs, 'single', budget, IMAGE_SEED, inputSignal),
+      makeRenderer(backend, inputs, 'multiple', budget, IMAGE_SEED, inputSignal),
     ]);
     const failed = made.find((m) => m.status === 'rejected');
     if (failed) {
@@ -288,8 +300,8 @@ export function createView(
     if (current.reference || !current.referenceWanted) return current.reference;
     const { inputs, budget, key } = current;
     const made = await Promise.allSettled([
-      makeRenderer(backend, inputs, 'single', budget, REFERENCE_SEED),
-      makeRenderer(backend, inputs, 'multiple', budget, REFERENCE_SEED),
+      makeRenderer(backend, inputs, 'single', budget, REFERENCE_SEED, inputSignal),
+      makeRenderer(backend, inputs, 'multiple', budget, REFERENCE_SEED, inputSignal),
     ]);
     const failed = made.find((m) => m.status === 'rejected');
     if (failed || run !== current) {
@@ -595,6 +607,20 @@ export function createView(
     return Math.max(1, Math.min(perFrame, fits));
   };
 
+  /**
+   * Samples per pixel of a background frame (the picture is complete; it goes on
+   * accumulating): as many as the measured cost fits BACKGROUND_FRAME_MS, at most a
+   * whole frame's. An input waits for the background frame in flight (its GPU work is
+   * queued before the new picture's), so a frame of the reader's spp, ~0.9 s on
+   * SwiftShader, made the first picture after an input slower than before previews
+   * existed (bench/interaction.ts: 1.5 s → 2.5 s).
+   */
+  const backgroundSpp = (kind: 'gpu' | 'cpu', perFrame: number): number => {
+    const cost = msPerSpp[kind];
+    if (cost === undefined) return 1;
+    return Math.max(1, Math.min(perFrame, Math.floor(BACKGROUND_FRAME_MS / cost)));
+  };
+
   /** Kernel variants compiled ahead for the other medium, once per device. */
   const warmed = new WeakSet<GPUDevice>();
   /**
@@ -641,7 +667,7 @@ export function createView(
         }
       }
       const current = run;
-      const result = await advance(backend, current, request.signal);
+      const result = await advance(backend, current, request.signal, request.background ?? false);
       if (!result || request.signal.aborted) return null;
       if (result.stage.pending === null && backend.kind === 'gpu')
         warmOtherScene(backend.gpu, inputs);
@@ -663,12 +689,17 @@ export function createView(
     backend: Backend<GpuContext>,
     current: Run,
     stale: AbortSignal,
+    background: boolean,
   ): Promise<VolumePathTracerFrame | null> => {
     const { budget, inputs } = current;
     const perFrame = Math.min(inputs.spp, budget.maxFrameSpp);
     const have = current.images.multiple.accumulation.samples;
     const preview = have === 0;
-    const count = preview ? previewSpp(backend.kind, perFrame) : perFrame - (have % perFrame);
+    const count = preview
+      ? previewSpp(backend.kind, perFrame)
+      : background
+        ? backgroundSpp(backend.kind, perFrame)
+        : perFrame - (have % perFrame);
     await frame(current, count, stale);
     if (stale.aborted || run !== current) return null;
     const added = current.images.multiple.accumulation.samples - have;
