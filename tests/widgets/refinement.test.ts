@@ -139,6 +139,9 @@ describe('RefinementState', () => {
     expect(state.settled).toBe(true);
     expect(state.report('job')).toBe(null);
     expect(state.settled).toBe(true);
+    // A job's report (no version) may ask for the next frame, taken as the current inputs'.
+    expect(state.report('frame')).toBe('frame');
+    expect(state.settled).toBe(true);
     expect(render(state, 'background')).toMatchObject({ background: false, settled: true });
     expect(render(state, null)).toMatchObject({ background: true, next: null, settled: true });
     expect(state.wantsBackground(version)).toBe(false);

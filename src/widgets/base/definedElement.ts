@@ -343,7 +343,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     this.dataset['settled'] = String(this.refinement.settled);
     this.readouts?.setStage(refinement?.label ?? '', pending);
     if (next === 'frame') this.scheduleRender();
-    else if (next === 'background' && version !== undefined) this.scheduleBackground(version);
+    else if (next === 'background') this.scheduleBackground(this.refinement.inputVersion);
     const readouts: Readouts<Frame> | undefined = this.definition.readouts;
     if (readouts) {
       for (const row of readouts.rows) {

@@ -134,9 +134,9 @@ export class RefinementState {
     // settled; before that (a preview, a job a full frame started) it is not complete.
     else if (this.backgroundVersion !== drawnFor) this.settledVersion = null;
     if (pending === 'background') this.backgroundVersion = drawnFor;
-    if (version === undefined) return null; // a job schedules its own reports
+    // A job's report may ask for the next stage too (as before background refinement).
     if (pending === 'frame' || pending === 'background') this.next = pending;
-    return this.next;
+    return pending === 'frame' || pending === 'background' ? pending : null;
   }
 
   /** A render that returned no frame (it drew by itself): complete if the view has no refinement. */
