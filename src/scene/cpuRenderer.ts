@@ -26,12 +26,48 @@ export function renderPixelSample(
   return estimateRadiance(scene, ray.origin, ray.direction, state);
 }
 
+/**
+ * One pass of the twin: samples sampleOffset … sampleOffset + samples − 1 of every pixel,
+ * as PASS_WORDS_PER_PIXEL sums per pixel (R, G, B, their squares, lookups, capped), the
+ * words the GPU pass writes. A pure function of its arguments (the streams are keyed by
+ * pixel, seed and sample index), so it can run in the compute worker
+ * (src/scene/passJob.ts) as well as here; `out` is reused when given.
+ */
+export function renderPassSums(
+  scene: SceneData,
+  width: number,
+  height: number,
+  seed: number,
+  sampleOffset: number,
+  samples: number,
+  out: Float64Array<ArrayBuffer> = new Float64Array(PASS_WORDS_PER_PIXEL * width * height),
+): Float64Array<ArrayBuffer> {
+  out.fill(0);
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const o = PASS_WORDS_PER_PIXEL * (y * width + x);
+      scene.stats.lookups = 0;
+      scene.stats.capped = 0;
+      for (let s = 0; s < samples; s++) {
+        const radiance = renderPixelSample(scene, x, y, width, seed, sampleOffset + s);
+        for (let c = 0; c < 3; c++) {
+          out[o + c]! += radiance[c]!;
+          out[o + 3 + c]! += radiance[c]! ** 2;
+        }
+      }
+      out[o + 6] = scene.stats.lookups;
+      out[o + 7] = scene.stats.capped;
+    }
+  }
+  return out;
+}
+
 export class CpuSceneRenderer implements PassRenderer {
   readonly timing = 'cpu' as const;
   /** The float64 moments of every pass so far. */
   readonly accumulation: ImageAccumulator;
   /** One pass's sums, PASS_WORDS_PER_PIXEL per pixel, reused from pass to pass. */
-  private readonly passSums: Float64Array;
+  private readonly passSums: Float64Array<ArrayBuffer>;
 
   constructor(
     private readonly scene: SceneData,
@@ -45,32 +81,9 @@ export class CpuSceneRenderer implements PassRenderer {
 
   renderPass(sampleOffset: number, samples: number): Promise<PassOutput> {
     const start = performance.now();
-    const floats = this.passSums;
-    floats.fill(0);
-    for (let y = 0; y < this.height; y++) {
-      for (let x = 0; x < this.width; x++) {
-        const o = PASS_WORDS_PER_PIXEL * (y * this.width + x);
-        this.scene.stats.lookups = 0;
-        this.scene.stats.capped = 0;
-        for (let s = 0; s < samples; s++) {
-          const radiance = renderPixelSample(
-            this.scene,
-            x,
-            y,
-            this.width,
-            this.seed,
-            sampleOffset + s,
-          );
-          for (let c = 0; c < 3; c++) {
-            floats[o + c]! += radiance[c]!;
-            floats[o + 3 + c]! += radiance[c]! ** 2;
-          }
-        }
-        floats[o + 6] = this.scene.stats.lookups;
-        floats[o + 7] = this.scene.stats.capped;
-      }
-    }
-    this.accumulation.addPass(floats, floats, samples);
+    const { scene, width, height, seed, passSums } = this;
+    renderPassSums(scene, width, height, seed, sampleOffset, samples, passSums);
+    this.accumulation.addPass(passSums, passSums, samples);
     return Promise.resolve({ milliseconds: performance.now() - start });
   }
 

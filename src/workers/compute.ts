@@ -141,6 +141,11 @@ export function cacheKey(name: string, args: readonly unknown[]): string {
 export interface JobOptions {
   /** Aborting it rejects this call's promise with an AbortError (the result may still be cached). */
   signal?: AbortSignal;
+  /**
+   * The cache key, where the caller has a cheaper one than the JSON of the arguments
+   * (a hash of a large scene): it must identify the name and the arguments exactly.
+   */
+  key?: string;
 }
 
 type Result<F> = F extends (...args: never[]) => infer R ? Awaited<R> : never;
@@ -203,7 +208,7 @@ export function workerJobs<J extends JobTable>(
     run(name, args, options = {}) {
       const { signal } = options;
       if (signal?.aborted) return Promise.reject(abortError());
-      const key = cacheKey(name, args);
+      const key = options.key ?? cacheKey(name, args);
       let entry = cache.get(key);
       // A queued job everyone gave up on is about to be dropped: queue it afresh.
       const abandoned = entry && !entry.settled && !entry.job.started && entry.job.interested === 0;

@@ -140,7 +140,11 @@ test('switching to the puffy cloud shows a preview first, then settles; the old 
   // The first frame after the input is the new scene's preview (fewer samples than a
   // frame's 4: the sphere's count did not carry on), then a whole frame settles it.
   expect(stages[0]).toMatch(/^Preview: [1-3] of 4 spp$/);
-  expect(await widget.getAttribute('data-stage')).toMatch(/^\d+ spp, accumulating to 1024$/);
+  // Settled, and still accumulating at low priority: the stage line says so.
+  expect(await widget.getAttribute('data-stage')).toMatch(/^\d+ of 1024 spp$/);
+  await expect(widget.locator('[data-readout="stage"]')).toHaveText(
+    /^\d+ of 1024 spp · accumulating$/,
+  );
   expect(parseDisplayed(await readout(widget, 'spp'))).toBeGreaterThanOrEqual(4);
   await expect(widget.locator('[data-readout="plan-multiple"]')).toContainText('majorant grid');
   expect(parseDisplayed(await readout(widget, 'lookups'))).toBeGreaterThan(0);

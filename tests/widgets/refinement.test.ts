@@ -1,7 +1,15 @@
 // The refinement ladder (which rung each stage draws, learnt from measured costs) and
-// the time slicer that keeps main-thread work under the long-task threshold.
+// the time slicer that keeps main-thread work under the long-task threshold, and the
+// base element's state machine of stages, background refinement and settledness.
 import { describe, expect, it } from 'vitest';
-import { Ladder, TimeSlicer, yieldToPage, type Rung } from '../../src/widgets/base/refinement.ts';
+import {
+  Ladder,
+  RefinementState,
+  TimeSlicer,
+  whenIdle,
+  yieldToPage,
+  type Rung,
+} from '../../src/widgets/base/refinement.ts';
 
 const RUNGS: Rung<number>[] = [
   { value: 32, work: 1, label: '32 px' },
@@ -80,5 +88,137 @@ describe('TimeSlicer', () => {
 
   it('yieldToPage resolves', async () => {
     await expect(yieldToPage()).resolves.toBeUndefined();
+  });
+});
+
+describe('RefinementState', () => {
+  /** A render as the base element does it: request, then report the frame's pending. */
+  const render = (
+    state: RefinementState,
+    pending: 'frame' | 'job' | 'background' | null,
+  ): { stage: number; background: boolean; next: string | null; settled: boolean } => {
+    const request = state.request();
+    const next = state.report(pending, request.version);
+    return { stage: request.stage, background: request.background, next, settled: state.settled };
+  };
+
+  it('climbs previews unsettled, settles on a complete frame and stops on full quality', () => {
+    const state = new RefinementState();
+    state.input();
+    expect(render(state, 'frame')).toEqual({
+      stage: 0,
+      background: false,
+      next: 'frame',
+      settled: false,
+    });
+    expect(render(state, 'frame')).toMatchObject({ stage: 1, next: 'frame', settled: false });
+    expect(render(state, null)).toMatchObject({ stage: 2, next: null, settled: true });
+    // Nothing asked for more: a later render (a move, a redraw) is a new picture.
+    expect(state.request()).toMatchObject({ stage: 0, background: false });
+    expect(state.settled).toBe(false);
+  });
+
+  it('background frames follow a complete picture and never unsettle it', () => {
+    const state = new RefinementState();
+    state.input();
+    render(state, 'frame');
+    expect(render(state, 'background')).toMatchObject({
+      stage: 1,
+      background: false,
+      next: 'background',
+      settled: true,
+    });
+    const version = state.inputVersion;
+    expect(state.wantsBackground(version)).toBe(true);
+    // The background frame is asked as such, and it stays settled whatever it reports
+    // ('frame' from a confused view, a job's step meanwhile), until the work is done.
+    const request = state.request();
+    expect(request).toMatchObject({ stage: 2, background: true });
+    expect(state.settled).toBe(true);
+    expect(state.report('frame', request.version)).toBe('frame');
+    expect(state.settled).toBe(true);
+    expect(state.report('job')).toBe(null);
+    expect(state.settled).toBe(true);
+    // A job's report (no version) may ask for the next frame, taken as the current inputs'.
+    expect(state.report('frame')).toBe('frame');
+    expect(state.settled).toBe(true);
+    expect(render(state, 'background')).toMatchObject({ background: false, settled: true });
+    expect(render(state, null)).toMatchObject({ background: true, next: null, settled: true });
+    expect(state.wantsBackground(version)).toBe(false);
+  });
+
+  it('an input during background refinement starts again at stage 0, unsettled', () => {
+    const state = new RefinementState();
+    state.input();
+    render(state, 'background');
+    const before = state.inputVersion;
+    state.request(); // a background frame is in flight…
+    state.input(); // …when the reader moves a slider
+    expect(state.settled).toBe(false);
+    expect(state.wantsBackground(before)).toBe(false); // the idle callback does nothing
+    // The frame in flight lands for the old inputs: it neither settles nor continues.
+    expect(state.report('background', before)).toBe(null);
+    expect(state.settled).toBe(false);
+    expect(state.report(null, before)).toBe(null);
+    expect(state.settled).toBe(false);
+    expect(render(state, 'frame')).toMatchObject({ stage: 0, background: false, settled: false });
+  });
+
+  it('stale frames never settle, whatever they report', () => {
+    for (const pending of ['frame', 'job', 'background', null] as const) {
+      const state = new RefinementState();
+      state.input();
+      const old = state.request();
+      state.input();
+      expect(state.report(pending, old.version)).toBe(null);
+      expect(state.settled).toBe(false);
+      // The next render is stage 0 for the new inputs, not a continuation of the stale one.
+      expect(state.request()).toMatchObject({ stage: 0, background: false });
+    }
+  });
+
+  it('a job report before the picture was complete keeps it unsettled; a restart unsettles', () => {
+    const state = new RefinementState();
+    state.input();
+    expect(render(state, 'job')).toMatchObject({ next: null, settled: false });
+    expect(state.report('job')).toBe(null);
+    expect(state.settled).toBe(false);
+    expect(state.report(null)).toBe(null);
+    expect(state.settled).toBe(true);
+    // A job step after full quality (not background) says the picture is incomplete again.
+    expect(state.report('job')).toBe(null);
+    expect(state.settled).toBe(false);
+    // A redraw of a settled background picture is a restart: unsettled until it reports.
+    render(state, 'background');
+    expect(state.settled).toBe(true);
+    state.cancelNext();
+    expect(state.request()).toMatchObject({ stage: 0, background: false });
+    expect(state.settled).toBe(false);
+  });
+
+  it('a render without a frame settles only for the current inputs', () => {
+    const state = new RefinementState();
+    state.input();
+    const { version } = state.request();
+    state.input();
+    state.settleWithoutFrame(version);
+    expect(state.settled).toBe(false);
+    state.settleWithoutFrame(state.request().version);
+    expect(state.settled).toBe(true);
+  });
+});
+
+describe('whenIdle', () => {
+  it('runs the callback later, not synchronously', async () => {
+    let ran = false;
+    const done = new Promise<void>((resolve) =>
+      whenIdle(() => {
+        ran = true;
+        resolve();
+      }),
+    );
+    expect(ran).toBe(false);
+    await done;
+    expect(ran).toBe(true);
   });
 });

@@ -10,7 +10,7 @@ import { BackendChooser, gpuFailureReason, type Backend } from './backend.ts';
 import { tagName, type FrameBackend, type Readouts, type WidgetDefinition } from './definition.ts';
 import { timingLabel } from './timing.ts';
 import { ReadoutList } from './readoutList.ts';
-import type { FrameRequest } from './refinement.ts';
+import { RefinementState, whenIdle, type FrameRequest } from './refinement.ts';
 import type {
   CanvasOptions,
   ManagedCanvas,
@@ -99,13 +99,8 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   );
   private renderer: unknown = null;
 
-  /** Bumped by every input; a render of an older version is stale. */
-  private inputVersion = 0;
-  /** The input version the last render drew, and its stage of refinement. */
-  private renderedVersion = -1;
-  private stage = 0;
-  /** The last frame asked for the next stage (Refinement.pending === 'frame'). */
-  private refineNext = false;
+  /** Input versions, stages and settledness (refinement.ts). */
+  private readonly refinement = new RefinementState();
   /** Aborted on the next input (ViewContext.inputSignal, FrameRequest.signal). */
   private inputAborter = new AbortController();
 
@@ -173,8 +168,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
 
   /** New parameters: the stale stage's signal aborts, and the next frame is stage 0. */
   protected override onInput(): void {
-    this.inputVersion += 1;
-    this.refineNext = false;
+    this.refinement.input();
     this.inputAborter.abort();
     this.inputAborter = new AbortController();
     this.dataset['settled'] = 'false';
@@ -250,21 +244,31 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     this.releaseRenderer();
     for (const canvas of this.canvases) canvas.replaceIfWebGpu();
     this.backends.useCpu(reason);
-    this.refineNext = false;
+    this.refinement.cancelNext();
     this.scheduleRender();
   }
 
   /**
-   * The request of this render: the next stage if the last frame asked for one and the
-   * inputs are the same; otherwise (an input, a move, a redraw) stage 0 of a new picture.
+   * The request of this render: the next stage (or background frame) if the last frame
+   * asked for one and the inputs are the same; otherwise (an input, a move, a redraw)
+   * stage 0 of a new picture, which unsettles the widget until it reports.
    */
-  private nextRequest(): FrameRequest {
-    const refine = this.refineNext && this.renderedVersion === this.inputVersion;
-    this.stage = refine ? this.stage + 1 : 0;
-    this.renderedVersion = this.inputVersion;
-    this.refineNext = false;
-    if (!refine) this.dataset['settled'] = 'false';
-    return { stage: this.stage, signal: this.inputAborter.signal };
+  private nextRequest(): FrameRequest & { version: number } {
+    const { stage, version, background } = this.refinement.request();
+    this.dataset['settled'] = String(this.refinement.settled);
+    return { stage, background, version, signal: this.inputAborter.signal };
+  }
+
+  /**
+   * Asks for a background frame once the page is idle, unless an input (or a restart)
+   * came meanwhile: background refinement never delays a reader's input, and the
+   * render itself still waits for an animation frame with the widget on screen.
+   */
+  private scheduleBackground(version: number): void {
+    const destroyed = this.aborter.signal;
+    whenIdle(() => {
+      if (!destroyed.aborted && this.refinement.wantsBackground(version)) this.scheduleRender();
+    });
   }
 
   protected async render(): Promise<void> {
@@ -276,7 +280,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       return;
     }
     const request = this.nextRequest();
-    const version = this.inputVersion;
+    const { version } = request;
     const backend: Backend<unknown> = await this.backends.choose();
     if (backend.kind === 'gpu' && view.renderGpu) {
       let frame: Frame | null;
@@ -317,29 +321,29 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
    * widget is settled once the render is done; a view with refinement reports when it is.
    */
   private settleWithoutFrame(version: number): void {
-    if (!this.view?.refinement && version === this.inputVersion) this.dataset['settled'] = 'true';
+    if (this.view?.refinement) return;
+    this.refinement.settleWithoutFrame(version);
+    this.dataset['settled'] = String(this.refinement.settled);
   }
 
   /**
    * Fills the readouts and the cost line, records the cost, lets the view draw the rest,
    * and follows the frame's refinement: data-frames counts every frame shown,
-   * data-stage and the stage line say what it is, data-settled whether it is full
-   * quality. A frame rendered for the current inputs (`version`) that asks for more
-   * schedules the next stage; a job's report (no version) is the job's own business.
+   * data-stage and the stage line say what it is, data-settled whether the picture is
+   * complete (RefinementState's rules). A frame rendered for the current inputs
+   * (`version`) that asks for more schedules the next stage now, or a background frame
+   * when the page is idle; a job's report (no version) is the job's own business.
    */
   private report(frame: Frame, backend: FrameBackend, version?: number): void {
     this.dataset['frames'] = String(Number(this.dataset['frames'] ?? '0') + 1);
     const refinement = this.view?.refinement?.(frame);
     const pending = refinement?.pending ?? null;
     this.dataset['stage'] = refinement?.label ?? 'full';
-    // A frame rendered for inputs that have changed since is not the settled picture.
-    const stale = version !== undefined && version !== this.inputVersion;
-    this.dataset['settled'] = pending === null && !stale ? 'true' : 'false';
-    this.readouts?.setStage(refinement?.label ?? '', pending !== null);
-    if (pending === 'frame' && (version === undefined || version === this.inputVersion)) {
-      this.refineNext = true;
-      this.scheduleRender();
-    }
+    const next = this.refinement.report(pending, version);
+    this.dataset['settled'] = String(this.refinement.settled);
+    this.readouts?.setStage(refinement?.label ?? '', pending);
+    if (next === 'frame') this.scheduleRender();
+    else if (next === 'background') this.scheduleBackground(this.refinement.inputVersion);
     const readouts: Readouts<Frame> | undefined = this.definition.readouts;
     if (readouts) {
       for (const row of readouts.rows) {

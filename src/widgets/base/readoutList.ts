@@ -34,14 +34,26 @@ export class ReadoutList {
   }
 
   /**
-   * Shows the stage; while more stages follow, the live cost line is marked busy so a
-   * screen reader announces the finished picture's cost, not every preview's.
+   * Shows the stage: a preview or a job in progress ('frame', 'job') says "refining…"
+   * with a pulsing dot; a complete picture that goes on improving ('background') says
+   * "accumulating" with a still dot; full quality (null) just its label. The live cost
+   * line is marked busy while previews follow, so a screen reader announces the
+   * finished picture's cost, not every preview's; in background refinement it is
+   * announced for the first complete frame, then busy until the accumulation stops.
    */
-  setStage(label: string, refining: boolean): void {
+  setStage(label: string, pending: 'frame' | 'job' | 'background' | null): void {
+    const refining = pending === 'frame' || pending === 'job';
+    const accumulating = pending === 'background';
+    const wasAccumulating = this.stage.classList.contains('sb-accumulating');
     this.stage.hidden = label === '';
-    this.stage.textContent = refining ? `${label} · refining…` : label;
+    this.stage.textContent = refining
+      ? `${label} · refining…`
+      : accumulating
+        ? `${label} · accumulating`
+        : label;
     this.stage.classList.toggle('sb-refining', refining);
-    if (refining) this.cost.setAttribute('aria-busy', 'true');
+    this.stage.classList.toggle('sb-accumulating', accumulating);
+    if (refining || (accumulating && wasAccumulating)) this.cost.setAttribute('aria-busy', 'true');
     else this.cost.removeAttribute('aria-busy');
   }
 

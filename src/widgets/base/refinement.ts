@@ -4,7 +4,10 @@
 // paints and takes input in between. The base element (definedElement.ts) counts the
 // stages, restarts at stage 0 on every input and aborts a stale stage's signal; a view
 // chooses what each stage draws, usually with a Ladder, and says through
-// WidgetView.refinement which stage a frame is and whether more will come.
+// WidgetView.refinement which stage a frame is and whether more will come. A picture
+// that is complete for what the reader asked may still improve by itself (a Monte
+// Carlo image accumulating samples): its frames are 'background' refinement, settled
+// for the reader and the tests, drawn at low priority, and dropped on the next input.
 
 /** After an input, the first picture should be on screen within this on WebGPU… */
 export const GPU_FIRST_PICTURE_MS = 100;
@@ -21,17 +24,150 @@ export interface FrameRequest {
   readonly stage: number;
   /** Aborted when the inputs change again: a stale stage may stop early. */
   readonly signal: AbortSignal;
+  /**
+   * True when the last frame was complete and asked for background refinement: this
+   * frame improves a settled picture (the view may keep it small; an input cancels it).
+   */
+  readonly background?: boolean;
 }
 
 /**
- * What a reported frame is. `pending` says what comes next: 'frame', the base asks for
- * the next stage on the next animation frame; 'job', the view's own job (a reference, a
- * training run) reports again by itself; null, this is full quality for these inputs.
+ * What comes after a reported frame: 'frame', the base asks for the next stage on the
+ * next animation frame (a preview: not settled); 'job', the view's own job (a
+ * reference, a training run) reports again by itself (not settled); 'background', the
+ * picture is complete for these inputs (settled) and the base asks for further frames
+ * at low priority while they improve it; null, this is full quality, nothing follows.
  */
+export type Pending = 'frame' | 'job' | 'background' | null;
+
+/** What a reported frame is. */
 export interface Refinement {
   /** Shown to the reader: e.g. "Preview: 64×64 pixels, 1 sample per pixel". */
   label: string;
-  pending: 'frame' | 'job' | null;
+  pending: Pending;
+}
+
+/** Whether a frame with this `pending` shows a complete picture (data-settled). */
+export function isComplete(pending: Pending): boolean {
+  return pending === null || pending === 'background';
+}
+
+/** What the base draws next after a report: nothing, the next stage now, or a background frame. */
+export type NextFrame = 'frame' | 'background' | null;
+
+/**
+ * The base element's refinement state, apart from the DOM (definedElement.ts drives
+ * it; tests/widgets/refinement.test.ts checks it). Every input bumps the version; a
+ * render asks `request()` which stage to draw; a frame's report says whether the
+ * picture is settled and what to draw next. The rules:
+ * - an input (or a redraw that is not a continuation) starts again at stage 0, unsettled;
+ * - a frame rendered for inputs that changed since never settles the widget and never
+ *   asks for more (its successor for the new inputs does);
+ * - a frame saying 'background' or null settles it; 'frame' or 'job' unsettles it,
+ *   except once background refinement of these inputs began: background frames (and
+ *   a job's reports meanwhile) never flip it back to unsettled, only an input or a
+ *   restart does.
+ */
+export class RefinementState {
+  private version = 0;
+  private renderedVersion = -1;
+  private stage = 0;
+  private next: NextFrame = null;
+  /** The input version whose picture is complete (null: none yet). */
+  private settledVersion: number | null = null;
+  /** The input version whose frames are background refinement of a complete picture. */
+  private backgroundVersion: number | null = null;
+
+  /** The current input version (a render captures it to report with). */
+  get inputVersion(): number {
+    return this.version;
+  }
+
+  /** Whether the picture shown is complete for the current inputs. */
+  get settled(): boolean {
+    return this.settledVersion === this.version;
+  }
+
+  /** Whether a background frame is wanted for `version` (checked when its low-priority turn comes). */
+  wantsBackground(version: number): boolean {
+    return this.next === 'background' && version === this.version;
+  }
+
+  /** New inputs: the next request is stage 0 and the picture is not settled. */
+  input(): void {
+    this.version += 1;
+    this.next = null;
+  }
+
+  /** Drops a requested continuation (a fall back to the CPU draws a new stage 0). */
+  cancelNext(): void {
+    this.next = null;
+  }
+
+  /**
+   * What this render draws: the next stage when the last frame asked for one (a stage or a
+   * background frame) for the same inputs; otherwise stage 0 of a new picture (an input, a
+   * redraw, a move), which is not settled until it reports.
+   */
+  request(): { stage: number; version: number; background: boolean } {
+    const continuing = this.next !== null && this.renderedVersion === this.version;
+    const background = continuing && this.next === 'background';
+    this.stage = continuing ? this.stage + 1 : 0;
+    this.renderedVersion = this.version;
+    this.next = null;
+    if (!continuing) {
+      this.settledVersion = null;
+      this.backgroundVersion = null;
+    }
+    return { stage: this.stage, version: this.version, background };
+  }
+
+  /**
+   * A frame was shown. `version` is the input version it was rendered for (absent: a
+   * view's job reported by itself, taken as current). Returns what to draw next.
+   */
+  report(pending: Pending, version?: number): NextFrame {
+    const drawnFor = version ?? this.version;
+    if (drawnFor !== this.version) return null; // stale: neither settles nor continues
+    if (isComplete(pending)) this.settledVersion = drawnFor;
+    // A job's step or a stage after background refinement began keeps the picture
+    // settled; before that (a preview, a job a full frame started) it is not complete.
+    else if (this.backgroundVersion !== drawnFor) this.settledVersion = null;
+    if (pending === 'background') this.backgroundVersion = drawnFor;
+    // A job's report may ask for the next stage too (as before background refinement).
+    if (pending === 'frame' || pending === 'background') this.next = pending;
+    return pending === 'frame' || pending === 'background' ? pending : null;
+  }
+
+  /** A render that returned no frame (it drew by itself): complete if the view has no refinement. */
+  settleWithoutFrame(version: number): void {
+    if (version === this.version) this.settledVersion = version;
+  }
+}
+
+/**
+ * Runs `callback` when the page has nothing more urgent to do: a background-priority
+ * task (scheduler.postTask) where there is one, else an idle callback (at most 100 ms
+ * late), else a plain task. Background refinement waits for this, so an input, another
+ * widget's first picture or the page's own rendering go first.
+ */
+export function whenIdle(callback: () => void): void {
+  const scheduler = (
+    globalThis as {
+      scheduler?: {
+        postTask?: (task: () => void, options: { priority: string }) => Promise<unknown>;
+      };
+    }
+  ).scheduler;
+  if (scheduler?.postTask) {
+    void scheduler.postTask(callback, { priority: 'background' }).catch(() => undefined);
+    return;
+  }
+  if (typeof requestIdleCallback === 'function') {
+    requestIdleCallback(() => callback(), { timeout: 100 });
+    return;
+  }
+  setTimeout(callback, 0);
 }
 
 /** The first-picture budget of a backend. */

@@ -13,9 +13,8 @@ import {
   canvasForContext,
   type AccumulationPicture,
 } from '../../scene/accumulationView.ts';
-import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
+import { WorkerSceneRenderer } from '../../scene/workerRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
-import { BackgroundRefinement } from '../../scene/backgroundRefinement.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene, type ResolvedScene } from '../../scene/load.ts';
@@ -37,6 +36,8 @@ import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { siteUrl } from '../base/siteUrl.ts';
 import { logLogSlope } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import type { jobs } from './jobs.ts';
 import {
   CPU_HEIGHT,
   CPU_SPP_CAP,
@@ -119,19 +120,26 @@ const median = (values: number[]): number => {
   return sorted[Math.floor(sorted.length / 2)]!;
 };
 
+/** The CPU twin's passes run in the compute worker (jobs.ts), off the page's thread. */
+const cpuJobs = workerJobs<typeof jobs>('single-scatter');
+
 async function makeRenderer(
   backend: Backend<GpuContext>,
   resolved: ResolvedScene,
   conditions: Conditions,
+  /** The signal a CPU pass listens to: the input signal of the moment it is asked for. */
+  inputSignal: () => AbortSignal,
 ): Promise<PassRenderer> {
   const packed = packScene(resolved);
   if (backend.kind === 'gpu')
     return GpuSceneRenderer.create(backend.gpu.device, STATIC_KERNELS, packed, conditions);
-  return new CpuSceneRenderer(
+  return new WorkerSceneRenderer(
+    cpuJobs,
     sceneData(packed, conditions),
     packed.width,
     packed.height,
     packed.seed,
+    inputSignal,
   );
 }
 
@@ -181,13 +189,10 @@ export function createView(
   let views: { device: GPUDevice; image: AccumulationView; error: AccumulationView } | null = null;
   const kernelTimes = new Map<string, KernelTimes>();
   let remeasure = false;
-  /** Whether the last frame left work (image, reference or timing) for the next. */
-  let moreWork = false;
-  const background = new BackgroundRefinement<SingleScatterFrame>(context);
   const resolvedCache = new Map<string, Promise<ResolvedScene>>();
+  const inputSignal = (): AbortSignal => context.inputSignal;
 
   const disposeRun = (): void => {
-    background.stop();
     run?.main.renderer.destroy();
     for (const snapshot of run?.snapshots ?? []) snapshot.image.destroy();
     run = null;
@@ -229,23 +234,37 @@ export function createView(
 
   /**
    * Median time per sample per pixel of the plan's kernel and of the general kernel on
-   * the same scene, pass size and seed, alternating so that both see the same load.
+   * the same scene, pass size and seed, alternating so that both see the same load. It
+   * runs in a background frame: an input stops it between passes (`signal`), so the
+   * new picture does not wait for the remaining repeats.
    */
   const timeKernels = async (
     inputs: SingleScatterInputs,
     backend: Backend<GpuContext>,
     width: number,
     height: number,
+    signal: AbortSignal,
   ): Promise<KernelTimes> => {
     const resolved = await resolve(inputs, IMAGE_SEED, width, height);
-    const specialized = await makeRenderer(backend, resolved, plan(resolved.scene).conditions);
-    const general = await makeRenderer(backend, resolved, GENERAL_CONDITIONS);
+    const specialized = await makeRenderer(
+      backend,
+      resolved,
+      plan(resolved.scene).conditions,
+      inputSignal,
+    );
+    let general: PassRenderer | null = null;
     const samples = backend.kind === 'gpu' ? Math.max(TIMING_SAMPLES, run?.main.perPass ?? 1) : 2;
     const planTimes: number[] = [];
     const generalTimes: number[] = [];
     let timing: PassTiming = specialized.timing;
     try {
+      signal.throwIfAborted();
+      // The general kernel compiles here, in the background, on first use (it used to be
+      // compiled ahead at the first preview, where the compile held up the next input's
+      // picture: bench/firstPictureProbe.ts).
+      general = await makeRenderer(backend, resolved, GENERAL_CONDITIONS, inputSignal);
       for (let i = 0; i < TIMING_REPEATS; i++) {
+        signal.throwIfAborted();
         // Different samples in each repeat, the same ones for both kernels.
         const a = await specialized.renderPass(i * samples, samples);
         const b = await general.renderPass(i * samples, samples);
@@ -263,7 +282,7 @@ export function createView(
       };
     } finally {
       specialized.destroy();
-      general.destroy();
+      general?.destroy();
     }
   };
 
@@ -418,7 +437,7 @@ export function createView(
       const started = generation;
       const resolved = await resolve(inputs, IMAGE_SEED, width, height);
       const scenePlan = plan(resolved.scene);
-      const renderer = await makeRenderer(backend, resolved, scenePlan.conditions);
+      const renderer = await makeRenderer(backend, resolved, scenePlan.conditions, inputSignal);
       if (started !== generation) {
         renderer.destroy();
         context.scheduleRender();
@@ -472,7 +491,6 @@ export function createView(
     const referenceTarget = REFERENCE_FACTOR * target;
     let reference = references.get(key);
     if (preview) {
-      if (backend.kind === 'gpu') warmGeneralKernel(backend.gpu);
       const result = await collect(current, reference ?? null, target, referenceTarget, null, {
         label: `Preview: ${current.main.renderer.accumulation.samples} of ${target} spp`,
         pending: 'frame',
@@ -481,7 +499,12 @@ export function createView(
     }
     if (!reference) {
       const resolved = await resolve(inputs, REFERENCE_SEED, width, height);
-      const renderer = await makeRenderer(backend, resolved, plan(resolved.scene).conditions);
+      const renderer = await makeRenderer(
+        backend,
+        resolved,
+        plan(resolved.scene).conditions,
+        inputSignal,
+      );
       if (started !== generation) {
         renderer.destroy();
         context.scheduleRender();
@@ -501,7 +524,7 @@ export function createView(
     if (referenceDone && (remeasure || !kernelTimes.has(key)) && !request.signal.aborted) {
       remeasure = false;
       context.setReadout('saved', 'timing both kernels…');
-      const times = await timeKernels(inputs, backend, width, height);
+      const times = await timeKernels(inputs, backend, width, height, request.signal);
       if (started !== generation) return null;
       kernelTimes.set(key, times);
     }
@@ -518,26 +541,13 @@ export function createView(
             ? ''
             : `, reference ${reference.renderer.accumulation.samples} of ${referenceTarget}`
         }`,
-        pending: null,
+        // Complete: while this frame had work (image, reference or timing), the next
+        // frames go on with it as background refinement of a settled picture.
+        pending: busy ? 'background' : null,
       },
     );
     if (started !== generation || request.signal.aborted) return null;
-    moreWork = busy;
     return result;
-  };
-
-  /** Devices whose general kernel (the timing's comparison) is compiled or compiling. */
-  const warmed = new WeakSet<GPUDevice>();
-  /**
-   * Compiles the general kernel in the background after the first picture: the kernel
-   * timing after the reference then does not stall a frame for the compiler.
-   */
-  const warmGeneralKernel = (gpu: GpuContext): void => {
-    if (warmed.has(gpu.device)) return;
-    warmed.add(gpu.device);
-    void GpuSceneRenderer.prepare(gpu.device, STATIC_KERNELS, GENERAL_CONDITIONS).catch(
-      () => undefined,
-    );
   };
 
   const renderOn = async (
@@ -546,21 +556,8 @@ export function createView(
   ): Promise<SingleScatterFrame | null> => {
     // Captured: the context's signal is a fresh one once the widget is destroyed.
     const signal = context.signal;
-    // The accumulation past the preview stops here (its frame in flight lands first).
-    await background.halt();
     try {
-      const inputs = inputsFrom(context.values);
-      const result = await frame(inputs, backend, request);
-      const current = run;
-      if (result?.stage.pending === null && moreWork) {
-        // The image, the reference and the kernel timing go on by themselves, a pass per
-        // frame, each reported without unsettling the widget.
-        background.start(
-          (stepSignal) => frame(inputs, backend, { signal: stepSignal }),
-          () => run === current && moreWork,
-        );
-      }
-      return result;
+      return await frame(inputsFrom(context.values), backend, request);
     } catch (error) {
       // Destroyed mid-frame (its renderers released under it), or a stale frame given up.
       if (signal.aborted || request.signal.aborted) return null;

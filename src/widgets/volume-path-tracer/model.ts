@@ -62,8 +62,10 @@ export const GPU_BUDGET: Budget = {
 };
 
 /**
- * The float64 twin runs on the page's thread: a small image and short passes (about
- * 5 µs per path at the default settings, so a frame blocks for tens of milliseconds).
+ * The float64 twin: a small image and short passes (about 5 µs per path at the default
+ * settings, tens of milliseconds per pass). The passes run in the compute worker
+ * (jobs.ts), one job at a time, so they stay short: a new input's first pass waits for
+ * the one running.
  */
 export const CPU_BUDGET: Budget = {
   width: 24,

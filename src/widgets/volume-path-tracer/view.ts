@@ -9,9 +9,8 @@ import type { GpuContext } from '../../gpu/device.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import type { Accumulation, ImageStatistics } from '../../scene/accumulation.ts';
 import { AccumulationView, canvasForContext } from '../../scene/accumulationView.ts';
-import { CpuSceneRenderer } from '../../scene/cpuRenderer.ts';
+import { WorkerSceneRenderer } from '../../scene/workerRenderer.ts';
 import { GpuAccumulation } from '../../scene/gpuAccumulation.ts';
-import { BackgroundRefinement } from '../../scene/backgroundRefinement.ts';
 import { GpuSceneRenderer } from '../../scene/gpuRenderer.ts';
 import { toneMapRgba8 } from '../../scene/image.ts';
 import { resolveScene } from '../../scene/load.ts';
@@ -24,6 +23,8 @@ import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { logLogSlope, mergeSeries, type SweepPoint } from '../base/sweep.ts';
 import type { ViewContext, WidgetView } from '../base/view.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import type { jobs } from './jobs.ts';
 import {
   CPU_BUDGET,
   GPU_BUDGET,
@@ -104,6 +105,8 @@ const REFERENCE_FRAME_MS = 120;
  * rest is the display passes, the statistics and the page's own frame.
  */
 const PREVIEW_SHARE = 0.6;
+/** Time the image passes of one background frame may take (both orders together, ms). */
+const BACKGROUND_FRAME_MS = 60;
 
 /** Frees a cached reference: its renderers while unfinished, else its moments. */
 function destroyReference(job: ReferenceJob): void {
@@ -111,12 +114,17 @@ function destroyReference(job: ReferenceJob): void {
   else for (const order of ORDERS) job.accumulations[order].destroy();
 }
 
+/** The CPU twin's passes run in the compute worker (jobs.ts), off the page's thread. */
+const cpuJobs = workerJobs<typeof jobs>('volume-path-tracer');
+
 async function makeRenderer(
   backend: Backend<GpuContext>,
   inputs: PathTracerInputs,
   order: Order,
   budget: Budget,
   seed: number,
+  /** The signal a CPU pass listens to: the input signal of the moment it is asked for. */
+  inputSignal: () => AbortSignal,
 ): Promise<{ renderer: PassRenderer; plan: Plan }> {
   const scene = buildScene(
     inputs,
@@ -135,11 +143,13 @@ async function makeRenderer(
           packed,
           scenePlan.conditions,
         )
-      : new CpuSceneRenderer(
+      : new WorkerSceneRenderer(
+          cpuJobs,
           sceneData(packed, scenePlan.conditions),
           packed.width,
           packed.height,
           packed.seed,
+          inputSignal,
         );
   return { renderer, plan: scenePlan };
 }
@@ -162,7 +172,7 @@ export function createView(
   let paused = false;
   let run: Run | null = null;
   const references = new Map<string, ReferenceJob>();
-  const background = new BackgroundRefinement<VolumePathTracerFrame>(context);
+  const inputSignal = (): AbortSignal => context.inputSignal;
 
   const dropViews = (): void => {
     for (const order of ORDERS) views[order]?.view.destroy();
@@ -170,7 +180,6 @@ export function createView(
   };
 
   const discardRun = (): void => {
-    background.stop();
     if (!run) return;
     for (const order of ORDERS) {
       const image = run.images[order];
@@ -239,8 +248,8 @@ export function createView(
     // Both images' kernels link and compile side by side; the reference waits until the
     // first picture is up (referenceFor), so a new scene shows something at once.
     const made = await Promise.allSettled([
-      makeRenderer(backend, inputs, 'single', budget, IMAGE_SEED),
-      makeRenderer(backend, inputs, 'multiple', budget, IMAGE_SEED),
+      makeRenderer(backend, inputs, 'single', budget, IMAGE_SEED, inputSignal),
+      makeRenderer(backend, inputs, 'multiple', budget, IMAGE_SEED, inputSignal),
     ]);
     const failed = made.find((m) => m.status === 'rejected');
     if (failed) {
@@ -291,8 +300,8 @@ export function createView(
     if (current.reference || !current.referenceWanted) return current.reference;
     const { inputs, budget, key } = current;
     const made = await Promise.allSettled([
-      makeRenderer(backend, inputs, 'single', budget, REFERENCE_SEED),
-      makeRenderer(backend, inputs, 'multiple', budget, REFERENCE_SEED),
+      makeRenderer(backend, inputs, 'single', budget, REFERENCE_SEED, inputSignal),
+      makeRenderer(backend, inputs, 'multiple', budget, REFERENCE_SEED, inputSignal),
     ]);
     const failed = made.find((m) => m.status === 'rejected');
     if (failed || run !== current) {
@@ -598,12 +607,30 @@ export function createView(
     return Math.max(1, Math.min(perFrame, fits));
   };
 
+  /**
+   * Samples per pixel of a background frame (the picture is complete; it goes on
+   * accumulating): as many as the measured cost fits BACKGROUND_FRAME_MS, at most a
+   * whole frame's. An input waits for the background frame in flight (its GPU work is
+   * queued before the new picture's), so a frame of the reader's spp, ~0.9 s on
+   * SwiftShader, made the first picture after an input slower than before previews
+   * existed (bench/interaction.ts: 1.5 s → 2.5 s).
+   */
+  const backgroundSpp = (kind: 'gpu' | 'cpu', perFrame: number): number => {
+    const cost = msPerSpp[kind];
+    if (cost === undefined) return 1;
+    return Math.max(1, Math.min(perFrame, Math.floor(BACKGROUND_FRAME_MS / cost)));
+  };
+
   /** Kernel variants compiled ahead for the other medium, once per device. */
   const warmed = new WeakSet<GPUDevice>();
   /**
-   * After the first settled picture, links and compiles the kernels of the other medium
-   * (grid or homogeneous) in the background: switching to it then draws its preview at
-   * once instead of waiting seconds for a compile (the pipelines are cached per device).
+   * Once the run has nothing more to do (accumulation and reference done, or paused),
+   * links and compiles the kernels of the other medium (grid or homogeneous): switching
+   * to it then draws its preview at once instead of waiting seconds for a compile (the
+   * pipelines are cached per device). Not earlier: a compile in flight holds up every
+   * later GPU call of the page (measured with bench/firstPictureProbe.ts on SwiftShader:
+   * the two kernels started 0.4 s before an albedo change delayed its first GPU call by
+   * 1.5 s, first picture 2.9 s), and a reader usually moves a slider first.
    */
   const warmOtherScene = (gpu: GpuContext, inputs: PathTracerInputs): void => {
     if (warmed.has(gpu.device)) return;
@@ -630,8 +657,6 @@ export function createView(
     const signal = context.signal;
     const inputs = inputsFrom(context.values);
     const key = `${backend.kind}|${sceneKey(inputs)}`;
-    // The accumulation past full quality stops here (its frame in flight lands first).
-    await background.halt();
     try {
       if (run?.key !== key) {
         discardRun();
@@ -642,20 +667,10 @@ export function createView(
         }
       }
       const current = run;
-      const result = await advance(backend, current, request.signal);
+      const result = await advance(backend, current, request.signal, request.background ?? false);
       if (!result || request.signal.aborted) return null;
-      if (result.stage.pending === null) {
-        // Full quality: the images and the reference go on refining by themselves, a
-        // frame at a time, each reported without unsettling the widget.
-        background.start(
-          async (stepSignal) => {
-            if (run !== current) return null;
-            return advance(backend, current, stepSignal);
-          },
-          () => run === current && !paused && hasWork(current),
-        );
-        if (backend.kind === 'gpu') warmOtherScene(backend.gpu, inputs);
-      }
+      if (result.stage.pending === null && backend.kind === 'gpu')
+        warmOtherScene(backend.gpu, inputs);
       return result;
     } catch (error) {
       // Destroyed mid-frame (its renderers released under it), or a stale frame given up.
@@ -674,12 +689,17 @@ export function createView(
     backend: Backend<GpuContext>,
     current: Run,
     stale: AbortSignal,
+    background: boolean,
   ): Promise<VolumePathTracerFrame | null> => {
     const { budget, inputs } = current;
     const perFrame = Math.min(inputs.spp, budget.maxFrameSpp);
     const have = current.images.multiple.accumulation.samples;
     const preview = have === 0;
-    const count = preview ? previewSpp(backend.kind, perFrame) : perFrame - (have % perFrame);
+    const count = preview
+      ? previewSpp(backend.kind, perFrame)
+      : background
+        ? backgroundSpp(backend.kind, perFrame)
+        : perFrame - (have % perFrame);
     await frame(current, count, stale);
     if (stale.aborted || run !== current) return null;
     const added = current.images.multiple.accumulation.samples - have;
@@ -692,12 +712,15 @@ export function createView(
     const stage = (samples: number): Refinement => {
       if (samples < perFrame && !paused)
         return { label: `Preview: ${samples} of ${perFrame} spp`, pending: 'frame' };
+      // Complete for the reader's spp: the images (and the reference) go on refining as
+      // background frames, settled, until both are done or the reader pauses.
+      const more = !paused && hasWork(current);
       const done = samples >= budget.maxSpp;
       return {
         label: done
           ? `${samples} spp, done`
-          : `${samples} spp${paused ? ', paused' : `, accumulating to ${budget.maxSpp}`}`,
-        pending: null,
+          : `${samples} of ${budget.maxSpp} spp${paused ? ', paused' : ''}`,
+        pending: more ? 'background' : null,
       };
     };
     return collect(current, backend, !preview, stale, stage);

@@ -1,0 +1,184 @@
+// Where the time between an input and the first picture goes, for one widget on one
+// build (issue 23's first-picture regressions): the page's WebGPU calls are wrapped
+// before any script runs, so every pipeline compile (createComputePipelineAsync,
+// createRenderPipelineAsync), every read-back (mapAsync) and every
+// onSubmittedWorkDone is logged with its start and end, together with the long tasks
+// and the widget's frame attributes. The widget is loaded, left to settle as the
+// interaction bench does (data-settled held 300 ms, or a quiet 2 s in builds without
+// it), given the bench's input (its first slider to 60 % of the range), and the log
+// from 3 s before the input to the first picture after it is printed: what was still
+// compiling or reading back when the input came, and what the first picture waited for.
+//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N]
+import { chromium } from 'playwright-core';
+import { preview } from 'vite';
+import { fileURLToPath } from 'node:url';
+import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
+import { changeValues } from './interactionJudge.ts';
+
+const ROOT = fileURLToPath(new URL('..', import.meta.url));
+
+/** Installed before the page's scripts: wraps the GPU calls that can stall a frame. */
+const WRAP = `(() => {
+  const log = [];
+  window.__probe = log;
+  const wrapAsync = (proto, name, what) => {
+    if (!proto || !proto[name]) return;
+    const original = proto[name];
+    proto[name] = function (...args) {
+      const entry = { what, start: performance.now(), end: null,
+        label: (args[0] && args[0].label) || '' };
+      log.push(entry);
+      const result = original.apply(this, args);
+      Promise.resolve(result).then(
+        () => { entry.end = performance.now(); },
+        () => { entry.end = performance.now(); entry.failed = true; });
+      return result;
+    };
+  };
+  const wrapSync = (proto, name, what) => {
+    if (!proto || !proto[name]) return;
+    const original = proto[name];
+    proto[name] = function (...args) {
+      const start = performance.now();
+      const result = original.apply(this, args);
+      const end = performance.now();
+      if (end - start > 2) log.push({ what, start, end, label: '' });
+      return result;
+    };
+  };
+  if (typeof GPUDevice !== 'undefined') {
+    wrapAsync(GPUDevice.prototype, 'createComputePipelineAsync', 'compute pipeline (async)');
+    wrapAsync(GPUDevice.prototype, 'createRenderPipelineAsync', 'render pipeline (async)');
+    wrapSync(GPUDevice.prototype, 'createComputePipeline', 'compute pipeline (sync)');
+    wrapSync(GPUDevice.prototype, 'createShaderModule', 'shader module');
+    wrapAsync(GPUBuffer.prototype, 'mapAsync', 'mapAsync');
+    wrapAsync(GPUQueue.prototype, 'onSubmittedWorkDone', 'onSubmittedWorkDone');
+    const submit = GPUQueue.prototype.submit;
+    GPUQueue.prototype.submit = function (...args) {
+      log.push({ what: 'submit', start: performance.now(), end: performance.now(), label: '' });
+      return submit.apply(this, args);
+    };
+  }
+  try {
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries())
+        log.push({ what: 'long task', start: e.startTime, end: e.startTime + e.duration, label: '' });
+    }).observe({ type: 'longtask', buffered: true });
+  } catch (error) { /* no long-task timing */ }
+})()`;
+
+function option(name: string, fallback?: string): string {
+  const found = process.argv.find((arg) => arg.startsWith(`--${name}=`));
+  const value = found?.slice(name.length + 3) ?? fallback;
+  if (value === undefined) throw new Error(`--${name}=… is required`);
+  return value;
+}
+
+const dist = option('dist');
+const widget = option('widget');
+const backend = option('backend', 'gpu');
+const afterSettleMs = Number(option('after-settle-ms', '0'));
+
+const server = await preview({
+  root: ROOT,
+  configFile: false,
+  preview: { port: 0, strictPort: false },
+  build: { outDir: dist },
+  logLevel: 'error',
+});
+const address = server.httpServer.address();
+const port = typeof address === 'object' && address ? address.port : 4173;
+const browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
+try {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  await context.addInitScript(WRAP);
+  const page = await context.newPage();
+  const query = backend === 'cpu' ? '?backend=cpu' : '';
+  await page.goto(`http://localhost:${port}/embed/${widget}.html${query}`);
+  const tag = `sb-${widget}`;
+  await page.locator(tag).first().scrollIntoViewIfNeeded();
+  // Settled as the bench judges it: data-settled "true" for 300 ms, or (a build without
+  // it) no new frame for 2 s.
+  const loadStart = Date.now();
+  let quietSince = Date.now();
+  let lastCount = '';
+  for (;;) {
+    const state = await page.evaluate((t) => {
+      const el = document.querySelector(t) as HTMLElement | null;
+      return {
+        settled: el?.dataset['settled'] ?? null,
+        count: `${el?.dataset['frames'] ?? ''}/${el?.dataset['rendered'] ?? ''}`,
+      };
+    }, tag);
+    if (state.count !== lastCount || state.settled === 'false') {
+      lastCount = state.count;
+      quietSince = Date.now();
+    }
+    const quiet = Date.now() - quietSince;
+    if (state.settled === 'true' ? quiet >= 300 : state.settled === null && quiet >= 2000) break;
+    if (Date.now() - loadStart > 60_000) {
+      console.log('not settled after 60 s: input anyway');
+      break;
+    }
+    await page.waitForTimeout(100);
+  }
+  if (afterSettleMs > 0) await page.waitForTimeout(afterSettleMs);
+  const slider = await page.evaluate((t) => {
+    const el = document.querySelector(t) as HTMLElement;
+    const control = [...el.querySelectorAll<HTMLInputElement>('.sb-controls input[type=range]')]
+      .filter((c) => !c.disabled && c.checkVisibility())
+      .at(0);
+    if (!control) throw new Error('no slider');
+    control.dataset['probe'] = '1';
+    return {
+      min: Number(control.min),
+      max: Number(control.max),
+      step: Number(control.step) || 1,
+      value: Number(control.value),
+    };
+  }, tag);
+  const [next] = changeValues(slider, slider.value);
+  // A string, not a function: tsx names arrow functions with a helper the page lacks.
+  const INPUT = `async ({ tag, next }) => {
+    const el = document.querySelector(tag);
+    const control = el.querySelector('input[data-probe]');
+    const count = () => Number(el.dataset.frames ?? el.dataset.rendered ?? 0);
+    const before = count();
+    const t0 = performance.now();
+    control.value = String(next);
+    control.dispatchEvent(new Event('input', { bubbles: true }));
+    await new Promise((resolve) => {
+      const observer = new MutationObserver(() => {
+        if (count() > before) { observer.disconnect(); resolve(); }
+      });
+      observer.observe(el, { attributes: true });
+    });
+    const t1 = performance.now();
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    const log = window.__probe.filter(
+      (e) => (e.end === null || e.end >= t0 - 3000) && e.start <= t1);
+    return { control: control.name, value: next, t0, firstMs: t1 - t0,
+      stage: el.dataset.stage ?? null, log };
+  }`;
+  const result = (await page.evaluate(`(${INPUT})(${JSON.stringify({ tag, next })})`)) as {
+    control: string;
+    value: number;
+    t0: number;
+    firstMs: number;
+    stage: string | null;
+    log: Record<string, unknown>[];
+  };
+  console.log(
+    `${widget} (${backend}): ${result.control} → ${result.value}: first picture ${result.firstMs.toFixed(0)} ms (${result.stage})`,
+  );
+  for (const entry of result.log) {
+    const start = (entry['start'] as number) - result.t0;
+    const end = entry['end'] === null ? null : (entry['end'] as number) - result.t0;
+    console.log(
+      `  ${String(entry['what']).padEnd(26)} ${start.toFixed(0).padStart(7)} → ${end === null ? 'pending' : end.toFixed(0).padStart(7)} ms  ${end === null ? '' : `(${(end - start).toFixed(0)} ms)`} ${entry['label'] ?? ''}`,
+    );
+  }
+} finally {
+  await browser.close();
+  await server.close();
+}
