@@ -15,7 +15,11 @@ export default defineConfig({
   timeout: 60_000,
   expect: { timeout: 15_000 },
   fullyParallel: false,
-  workers: 1,
+  // Two browsers at once on the two cores CI has: much of a test is waiting (page loads,
+  // polls for a settled picture, animation frames) rather than SwiftShader's drawing,
+  // so two workers shorten the run; files still run their tests in order. E2E_WORKERS=1
+  // runs one at a time (a loaded machine, or a spec being debugged).
+  workers: Number(process.env['E2E_WORKERS'] ?? 2),
   retries: 0,
   outputDir: RESULTS,
   reporter: [['list'], ['json', { outputFile: `${RESULTS}/playwright.json` }]],
