@@ -108,9 +108,12 @@ export function setupDeck(): void {
   };
   let fitFrame = 0;
   let contentTimer: ReturnType<typeof setTimeout> | undefined;
+  // When the contents started changing without a refit since (0: not pending).
+  let contentPendingSince = 0;
   const scheduleFit = (): void => {
     cancelAnimationFrame(fitFrame);
     clearTimeout(contentTimer);
+    contentPendingSince = 0;
     fitFrame = requestAnimationFrame(() => {
       const figure = figureOf(slides[index]);
       if (figure && sizesOf(figure) !== fittedSizes) fit();
@@ -122,16 +125,26 @@ export function setupDeck(): void {
   // a refinement or a sweep moved the controls under the pointer (a Cancel button
   // never held still long enough to be clicked).
   const CONTENT_SETTLE_MS = 400;
+  // …but contents that never hold still (a widget refining for seconds) are refitted
+  // after at most this long, so that a slide does not overflow for the whole refinement.
+  const CONTENT_MAX_WAIT_MS = 1500;
   const scheduleContentFit = (): void => {
     clearTimeout(contentTimer);
-    contentTimer = setTimeout(() => {
-      const figure = figureOf(slides[index]);
-      if (!figure || sizesOf(figure) === fittedSizes) return;
-      // A scroll region whose contents shrank is refitted: it may fit again, larger.
-      const scrolls = figure[1].classList.contains('deck-figure--scrolls');
-      if (fitted.matches && !scrolls && stillFits(...figure)) fittedSizes = sizesOf(figure);
-      else fit();
-    }, CONTENT_SETTLE_MS);
+    const now = performance.now();
+    if (contentPendingSince === 0) contentPendingSince = now;
+    const wait = Math.min(CONTENT_SETTLE_MS, contentPendingSince + CONTENT_MAX_WAIT_MS - now);
+    contentTimer = setTimeout(
+      () => {
+        contentPendingSince = 0;
+        const figure = figureOf(slides[index]);
+        if (!figure || sizesOf(figure) === fittedSizes) return;
+        // A scroll region whose contents shrank is refitted: it may fit again, larger.
+        const scrolls = figure[1].classList.contains('deck-figure--scrolls');
+        if (fitted.matches && !scrolls && stillFits(...figure)) fittedSizes = sizesOf(figure);
+        else fit();
+      },
+      Math.max(0, wait),
+    );
   };
   // The box (the room the slide leaves the figure) changes with the window, the notes
   // or presentation mode: that refits on the next frame. Its contents: see above.
