@@ -10,8 +10,13 @@ import {
   WIDGET_SELECTOR,
 } from './support.ts';
 
-test('every widget falls back to the CPU with a visible notice', async ({ page }) => {
-  for (const chapter of chapterPages()) {
+// One test per chapter (a chapter's CPU twins take tens of seconds on two cores; the whole
+// book in one test outgrew its timeout as widgets were added).
+for (const chapter of chapterPages()) {
+  test(`${chapter.slug}: every widget falls back to the CPU with a visible notice`, async ({
+    page,
+  }) => {
+    test.setTimeout(180_000);
     const errors = trackErrors(page);
     await page.goto(chapter.path);
     for (const widget of await page.locator(WIDGET_SELECTOR).all()) {
@@ -26,8 +31,8 @@ test('every widget falls back to the CPU with a visible notice', async ({ page }
       await expect(widget.locator('.sb-cost')).toContainText('CPU fallback');
     }
     expect(errors).toEqual([]);
-  }
-});
+  });
+}
 
 test("the CPU fallback computes Beer's law", async ({ page }) => {
   await page.goto(
