@@ -47,6 +47,7 @@ import {
 import { rayleighEval } from '../../src/reference/phase.ts';
 import { rngNextFloat, rngSeed } from '../../src/reference/rng.ts';
 import { chiSquareSurvival } from '../../src/statistics/distributions.ts';
+import { gaussLegendre } from '../support/hFunction.ts';
 
 const index = (n: number, kappa = 0): RefractiveIndex => ({ n, kappa });
 
@@ -54,27 +55,11 @@ const index = (n: number, kappa = 0): RefractiveIndex => ({ n, kappa });
 // Quadrature: Gauss–Legendre on pieces split geometrically toward the forward peak,
 // whose width in 1 − μ is ≈ 1/x².
 // ---------------------------------------------------------------------------
-function gaussLegendre(n: number): { nodes: number[]; weights: number[] } {
-  const nodes: number[] = [];
-  const weights: number[] = [];
-  for (let i = 1; i <= n; i++) {
-    let x = Math.cos((Math.PI * (i - 0.25)) / (n + 0.5));
-    let derivative = 1;
-    for (let iteration = 0; iteration < 100; iteration++) {
-      let p0 = 1;
-      let p1 = x;
-      for (let k = 2; k <= n; k++) [p0, p1] = [p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k];
-      derivative = (n * (x * p1 - p0)) / (x * x - 1);
-      const step = p1 / derivative;
-      x -= step;
-      if (Math.abs(step) < 1e-16) break;
-    }
-    nodes.push(x);
-    weights.push(2 / ((1 - x * x) * derivative * derivative));
-  }
-  return { nodes, weights };
-}
-const GL = gaussLegendre(32);
+// The support's rule is on [0, 1]; on [−1, 1]: x = 2t − 1, w = 2w.
+const GL = (({ nodes, weights }) => ({
+  nodes: nodes.map((t) => 2 * t - 1),
+  weights: weights.map((w) => 2 * w),
+}))(gaussLegendre(32));
 
 /**
  * ∫_{4π} f(μ) dω = 2π ∫_0^π f(cos θ) sin θ dθ by 32-point Gauss–Legendre on `pieces` equal
