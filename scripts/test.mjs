@@ -13,10 +13,14 @@ import { existsSync, readFileSync, rmSync } from 'node:fs';
 let passed = 0;
 let failed = 0;
 const failures = [];
+/** Wall time of each stage, printed with the summary (the suite's budget is 30 minutes). */
+const timings = [];
 
 function run(name, command, args, env = {}) {
   console.log(`\n=== ${name}: ${[command, ...args].join(' ')}`);
+  const started = Date.now();
   const result = spawnSync(command, args, { stdio: 'inherit', env: { ...process.env, ...env } });
+  timings.push(`${name} ${((Date.now() - started) / 60_000).toFixed(1)} min`);
   return result.status === 0;
 }
 
@@ -28,8 +32,12 @@ function single(name, command, args) {
   }
 }
 
-/** Runs a test runner and adds the counts of its JSON report (or one failure if there is none). */
-function runner(name, command, args, report, count) {
+/**
+ * Runs a test runner and adds the counts of its JSON report (or one failure if there is
+ * none). `names` lists the failed tests of the report: CI keeps only the end of the
+ * output, so they are repeated in the summary at the end.
+ */
+function runner(name, command, args, report, count, names = () => []) {
   rmSync(report, { force: true });
   const ok = run(name, command, args);
   if (!existsSync(report)) {
@@ -37,13 +45,43 @@ function runner(name, command, args, report, count) {
     failures.push(`${name} (no report)`);
     return;
   }
-  const counts = count(JSON.parse(readFileSync(report, 'utf8')));
+  const parsed = JSON.parse(readFileSync(report, 'utf8'));
+  const counts = count(parsed);
   passed += counts.passed;
   failed += counts.failed;
   if (!ok && counts.failed === 0) {
     failed += 1;
     failures.push(`${name} (exited with an error)`);
-  } else if (counts.failed > 0) failures.push(`${name} (${counts.failed} failed)`);
+  } else if (counts.failed > 0) {
+    const listed = names(parsed).slice(0, 20);
+    failures.push(
+      `${name} (${counts.failed} failed${listed.length ? `: ${listed.join(' | ')}` : ''})`,
+    );
+  }
+}
+
+/** Failed or flaky tests of a Playwright JSON report, as "file › title". */
+function playwrightFailures(report) {
+  const out = [];
+  const walk = (suite) => {
+    for (const spec of suite.specs ?? [])
+      for (const t of spec.tests ?? [])
+        if (t.status === 'unexpected' || t.status === 'flaky')
+          out.push(`${spec.file} › ${spec.title} [${t.projectName}]`);
+    for (const child of suite.suites ?? []) walk(child);
+  };
+  for (const suite of report.suites ?? []) walk(suite);
+  return out;
+}
+
+/** Failed tests of a Vitest JSON report, as "file › title". */
+function vitestFailures(report) {
+  return (report.testResults ?? []).flatMap((file) => {
+    const path = String(file.name ?? '').replace(`${process.cwd()}/`, '');
+    const failedTests = (file.assertionResults ?? []).filter((t) => t.status === 'failed');
+    if (failedTests.length === 0 && file.status === 'failed') return [`${path} (file)`];
+    return failedTests.map((t) => `${path} › ${t.fullName ?? t.title}`);
+  });
 }
 
 if (!run('chromium', 'sh', ['scripts/ensure-chromium.sh'])) {
@@ -67,14 +105,22 @@ runner(
     passed: r.numPassedTests ?? 0,
     failed: r.numFailedTests ?? 0,
   }),
+  vitestFailures,
 );
 const built = run('build', 'npx', ['vite', 'build', '--logLevel', 'warn']);
 if (built) {
   passed += 1;
-  runner('playwright', 'npx', ['playwright', 'test'], 'test-results/playwright.json', (r) => ({
-    passed: r.stats?.expected ?? 0,
-    failed: (r.stats?.unexpected ?? 0) + (r.stats?.flaky ?? 0),
-  }));
+  runner(
+    'playwright',
+    'npx',
+    ['playwright', 'test'],
+    'test-results/playwright.json',
+    (r) => ({
+      passed: r.stats?.expected ?? 0,
+      failed: (r.stats?.unexpected ?? 0) + (r.stats?.flaky ?? 0),
+    }),
+    playwrightFailures,
+  );
   runner(
     'firefox e2e',
     'node',
@@ -90,6 +136,7 @@ if (built) {
     ],
     'test-results/firefox.json',
     (r) => ({ passed: r.passed ?? 0, failed: r.failed ?? 0 }),
+    (r) => (r.tests ?? []).filter((t) => !t.ok).map((t) => `${t.suite} › ${t.name}`),
   );
 } else {
   failed += 1;
@@ -97,5 +144,6 @@ if (built) {
 }
 
 if (failures.length) console.log(`\nFailed: ${failures.join('; ')}`);
+console.log(`Stage times: ${timings.join(', ')}`);
 console.log(`\n${passed} passed, ${failed} failed`);
 process.exit(failed === 0 ? 0 : 1);
