@@ -8,6 +8,7 @@ export const HIDDEN_LOADERS: Record<string, Loader> = {
   'beer-law': () => import('./beer-law/hidden.ts'),
   'hg-eval': () => import('./hg-eval/hidden.ts'),
   'hg-sample': () => import('./hg-sample/hidden.ts'),
+  'mie-sample': () => import('./mie-sample/hidden.ts'),
   'raymarch-exact': () => import('./raymarch-exact/hidden.ts'),
   'delta-tracking': () => import('./delta-tracking/hidden.ts'),
   'single-scatter-shadow': () => import('./single-scatter-shadow/hidden.ts'),

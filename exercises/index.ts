@@ -9,6 +9,7 @@ const LOADERS: Record<string, Loader> = {
   'beer-law': () => import('./beer-law/exercise.ts'),
   'hg-eval': () => import('./hg-eval/exercise.ts'),
   'hg-sample': () => import('./hg-sample/exercise.ts'),
+  'mie-sample': () => import('./mie-sample/exercise.ts'),
   'raymarch-exact': () => import('./raymarch-exact/exercise.ts'),
   'delta-tracking': () => import('./delta-tracking/exercise.ts'),
   'single-scatter-shadow': () => import('./single-scatter-shadow/exercise.ts'),

@@ -13,6 +13,7 @@ describe('grade --self-test', () => {
       'beer-law',
       'hg-eval',
       'hg-sample',
+      'mie-sample',
       'raymarch-exact',
       'delta-tracking',
       'single-scatter-shadow',
