@@ -2,10 +2,10 @@
 // The student inverts the CDF of a table in the library's layout (shaders/mie.wesl,
 // PhaseTable): find the interval by bisection over the node CDFs, then invert the
 // quadratic CDF of the linear density inside it in a form that never cancels. The
-// reference is the library's phaseTabulatedSampleMu itself, on the same table padded
-// to the library's 513 nodes. Point checks compare μ with it; the χ² checks compare the
-// histogram with the exact distribution of the table (tables.ts), so a sampler that is
-// only self-consistent fails.
+// reference is the library's phaseTabulatedSampleMu transcribed onto the 64-node tables
+// (tests/grading/mieSample.test.ts checks it against the library function on the GPU).
+// Point checks compare μ with it; the χ² checks compare the histogram with the exact
+// distribution of the table (tables.ts), so a sampler that is only self-consistent fails.
 import type { CaseSpec, ChiSquareCheck, ExerciseDefinition } from '../../src/grading/exercise.ts';
 import {
   EXERCISE_TABLES,
@@ -109,7 +109,7 @@ fn sampleMieMu(table: u32, xi: f32) -> f32 {
   helpers: { imports: [], wgsl: TABLE_WGSL },
   // The library's phaseTabulatedSampleMu (shaders/mie.wesl) line by line on the exercise's
   // 64-node tables: the library function itself reads a 513-node PhaseTable through a
-  // pointer, and copying a padded table per call made the reference's grading five times
+  // pointer, and copying a padded table per call made the reference's grading about three times
   // slower on SwiftShader. tests/grading/mieSample.test.ts grades this transcription
   // against the library function on the padded table (agreement to 1e-7).
   reference: `fn sampleMieMu(table: u32, xi: f32) -> f32 {
