@@ -79,6 +79,11 @@ export interface SceneData {
   /** Samples of the density grid and of its majorant grid (x fastest). */
   density: Float32Array;
   majorant: Float32Array;
+  /**
+   * The phase-table buffer (src/phase/registry.ts packPhases; integrator.wesl
+   * scenePhaseTables): the tables of the tabulated phase functions, as f32.
+   */
+  phaseTables: Float32Array;
   /** The WESL conditions the kernel was linked with (absent names are false). */
   conditions: Readonly<Record<string, boolean>>;
   /** Counters of the current pixel, as sceneLookups and sceneCapped. */
@@ -481,7 +486,12 @@ export function shadowTransmittance(
 
 /** The medium's phase function (src/phase/registry.ts), as the kernel's conditions allow. */
 export function mediumPhaseEval(scene: SceneData, medium: SceneMedium, wo: Vec3, wi: Vec3): number {
-  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.eval(medium.phase, wo, wi);
+  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.eval(
+    medium.phase,
+    wo,
+    wi,
+    scene.phaseTables,
+  );
 }
 
 export function mediumPhaseSample(
@@ -490,7 +500,12 @@ export function mediumPhaseSample(
   wo: Vec3,
   u: readonly [number, number],
 ): Vec3 {
-  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.sample(medium.phase, wo, u);
+  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.sample(
+    medium.phase,
+    wo,
+    u,
+    scene.phaseTables,
+  );
 }
 
 const NO_LIGHT: LightSample = { direction: [0, 0, 1], distance: 0, irradiance: [0, 0, 0] };
