@@ -27,7 +27,8 @@ import {
   type LightSample,
 } from './lights.ts';
 import { gridDensityTrilinear, gridMajorantAlongRay, type DensityGrid } from './medium.ts';
-import { dispatchedPhase, type PhaseRecord } from '../phase/registry.ts';
+import { dispatchedPhase, phaseTableAt, type PhaseRecord } from '../phase/registry.ts';
+import type { PhaseTable } from './mie.ts';
 import type { Vec3 } from './directions.ts';
 import { rngNextFloat, type RngState } from './rng.ts';
 import { equiangularSample } from './scatter.ts';
@@ -482,6 +483,14 @@ export function shadowTransmittance(
   )
     return [0, 0, 0];
   return sceneTransmittance(scene, origin, direction, distance, state);
+}
+
+/**
+ * Table `index` of the scene's phase-table buffer, as integrator.wesl's function-scope copy
+ * (the f32 words widened to f64; the tabulated entries' twins read it the same way).
+ */
+export function scenePhaseTableLoad(scene: SceneData, index: number): PhaseTable {
+  return phaseTableAt(scene.phaseTables, index);
 }
 
 /** The medium's phase function (src/phase/registry.ts), as the kernel's conditions allow. */
