@@ -25,9 +25,10 @@
 // one phase-table buffer (f32, PHASE_TABLE_WORDS per table, shaders/mie.wesl PhaseTable)
 // and writes the table's index to PhaseRecord.table. The kernel binds that buffer as
 // integrator.wesl scenePhaseTables (binding 5, declared and read only under the entry's
-// condition), and the entry's WGSL case first copies the record's table into a
-// function-scope `table` (scenePhaseTableLoad), which its eval/sample expressions pass
-// by pointer; the twin reads the same f32 words (SceneData.phaseTables, phaseTableAt).
+// condition), and the entry's WGSL case first makes the invocation's private copy
+// `scenePhaseTable` hold the record's table (scenePhaseTableLoad: copied only when it
+// holds another), which its eval/sample expressions pass by pointer; the twin reads the
+// same f32 words (SceneData.phaseTables, phaseTableAt).
 // Tables rather than files under public/ because the table is a pure function of three
 // numbers that the twin computes in ≈ 10–40 ms; a scene then stays self-contained.
 import { sampleUniformSphere, type Vec3 } from '../reference/directions.ts';
@@ -91,7 +92,7 @@ export interface PhaseFunctionDefinition<
    * The WGSL side in shaders/integrator.wesl: the tag constant and the exact expression
    * each case of mediumPhaseEval (scope: medium, wo, wi) and mediumPhaseSample (scope:
    * medium, wo, u) returns; medium.phase is the ScenePhase of the record. A tabulated
-   * entry's case first loads its table (PHASE_TABLE_LOAD), so `table` is in scope too.
+   * entry's case first loads its table (PHASE_TABLE_LOAD) into `scenePhaseTable`.
    */
   wgsl: { tag: string; eval: string; sample: string };
   /**
@@ -133,20 +134,20 @@ export const HG_G_LIMIT = 0.99999;
 
 /**
  * Largest Mie size parameter x = 2πr/λ a scene may ask for. Building the table (the series
- * has ≈ x + 4x^{1/3} terms, summed at up to 16 angles per node) takes ≈ 30 ms at x = 200
- * and grows as x² (≈ 150 ms at 500, 400 ms at 1000); the 513-node table's normalisation
- * error, 1 − 1/∫p dω of the point-sampled lobe, is 0.1 % at x = 200 (0.5 % at 1000). A fog
- * or cloud droplet of radius 5 µm in green light (λ = 0.55 µm) has x ≈ 57.
+ * has ≈ x + 4x^{1/3} terms, summed at up to 16 angles per node) took ≈ 30 ms at x = 200
+ * here, ≈ 150 ms at 500 and 400 ms at 1000; the factor by which mieTabulatePhase rescales
+ * the 513 node values to ∫p dω = 1 (its `normalization`, a measure of how well the nodes
+ * resolve the lobe) is 1.001 at x = 200, 1.005 at 1000. A fog or cloud droplet of radius
+ * 5 µm in green light (λ = 0.55 µm) has x ≈ 57.
  */
 export const MIE_SIZE_PARAMETER_MAX = 200;
 
 /**
- * The WGSL statements a tabulated entry's case runs before it returns (whitespace aside):
- * a function-scope copy of the record's table, which the mie.wesl functions take by
- * pointer (WGSL passes no pointer into a storage buffer to a function).
+ * The WGSL statement a tabulated entry's case runs before it returns: the invocation's
+ * private copy `scenePhaseTable` made to hold the record's table, which the mie.wesl
+ * functions take by pointer (WGSL passes no pointer into a storage buffer to a function).
  */
-export const PHASE_TABLE_LOAD =
-  'var table: PhaseTable; scenePhaseTableLoad(medium.phase.table, &table);';
+export const PHASE_TABLE_LOAD = 'scenePhaseTableLoad(medium.phase.table);';
 
 /** f32 words of one table in the phase-table buffer (shaders/mie.wesl PhaseTable). */
 export const PHASE_TABLE_WORDS = 4 * PHASE_TABLE_NODES;
@@ -258,8 +259,8 @@ export const PHASE_FUNCTIONS = [
     condition: 'phaseMie',
     wgsl: {
       tag: 'SCENE_PHASE_MIE',
-      eval: 'phaseTabulatedEvalDirections(&table, wo, wi)',
-      sample: 'phaseTabulatedSample(&table, wo, u).wi',
+      eval: 'phaseTabulatedEvalDirections(&scenePhaseTable, wo, wi)',
+      sample: 'phaseTabulatedSample(&scenePhaseTable, wo, u).wi',
     },
     twin: {
       eval: (phase, wo, wi, tables) =>

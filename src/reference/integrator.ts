@@ -486,8 +486,9 @@ export function shadowTransmittance(
 }
 
 /**
- * Table `index` of the scene's phase-table buffer, as integrator.wesl's function-scope copy
- * (the f32 words widened to f64; the tabulated entries' twins read it the same way).
+ * Table `index` of the scene's phase-table buffer, as integrator.wesl's private copy
+ * scenePhaseTable after scenePhaseTableLoad (the f32 words widened to f64, memoised; the
+ * tabulated entries' twins read it the same way).
  */
 export function scenePhaseTableLoad(scene: SceneData, index: number): PhaseTable {
   return phaseTableAt(scene.phaseTables, index);

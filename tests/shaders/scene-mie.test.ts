@@ -8,8 +8,7 @@
 //  - the example scene public/scenes/mie-fog.json (path tracer, x = 57 droplets, sun, sky,
 //    floor): GPU = twin on the same samples, and the specialized kernel = the general one
 //    (per-pixel z-scores from both standard errors, tests/support/sceneRender.ts).
-// Small images and few samples: SwiftShader runs WebGPU on the CPU, and a Mie kernel
-// copies a 2052-word table per phase-function call.
+// Small images and few samples: SwiftShader runs WebGPU on the CPU.
 import { beforeAll, describe, it } from 'vitest';
 import type { ResolvedScene } from '../../src/scene/load.ts';
 import { renderScene, type SceneRenderOptions } from '../../src/scene/renderScene.ts';
