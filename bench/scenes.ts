@@ -28,6 +28,7 @@ const SCENES = [
   'white-furnace',
   'rayleigh-haze',
   'spheres-on-floor',
+  'mie-fog',
 ];
 
 interface Timed {

@@ -19,15 +19,26 @@
 // WGSL dispatch: it needs no condition, and a kind whose condition a kernel was not
 // linked with scatters as it (the planner never lets that happen).
 //
-// Tabulated phase functions (issue 21, e.g. Mie from a table) plug in as one more entry
-// that uses PhaseRecord.table: PhaseParameter gains a kind ('real', as now, or
-// 'table'); a table parameter's JSON value names a file under public/ (checked like grid
-// files in validate.ts, read by load.ts into the resolved scene); pack.ts appends the
-// tables to one phase-table storage buffer, which a new integrator binding exposes under
-// the entry's condition, and packPhase writes the table's offset; the entry's WGSL
-// eval/sample read the table from that offset, and its twin reads the same array (which
-// SceneData then carries next to the density grid).
+// Tabulated phase functions (issue 21): an entry with `tabulate` (Lorenz–Mie, `mie`) is
+// still described by real parameters; at pack time packPhases builds its table from them
+// with the float64 twin (src/reference/mie.ts, cached per parameter values), appends it to
+// one phase-table buffer (f32, PHASE_TABLE_WORDS per table, shaders/mie.wesl PhaseTable)
+// and writes the table's index to PhaseRecord.table. The kernel binds that buffer as
+// integrator.wesl scenePhaseTables (binding 5, declared and read only under the entry's
+// condition), and the entry's WGSL case first makes the invocation's private copy
+// `scenePhaseTable` hold the record's table (scenePhaseTableLoad: copied only when it
+// holds another), which its eval/sample expressions pass by pointer; the twin reads the
+// same f32 words (SceneData.phaseTables, phaseTableAt).
+// Tables rather than files under public/ because the table is a pure function of three
+// numbers that the twin computes in ≈ 10–40 ms; a scene then stays self-contained.
 import { sampleUniformSphere, type Vec3 } from '../reference/directions.ts';
+import {
+  mieTabulatePhase,
+  PHASE_TABLE_NODES,
+  phaseTabulatedEvalDirections,
+  phaseTabulatedSample,
+  type PhaseTable,
+} from '../reference/mie.ts';
 import {
   hgEvalDirections,
   hgSample,
@@ -42,7 +53,7 @@ export const PHASE_MAX_VALUES = 3;
 /**
  * A medium's phase function as the renderer reads it (integrator.wesl ScenePhase): the
  * tag (index of the entry in PHASE_FUNCTIONS), up to PHASE_MAX_VALUES real parameters
- * (f32 in the record; unused ones 0) and the offset of its table in the phase-table
+ * (f32 in the record; unused ones 0) and the index of its table in the phase-table
  * buffer of tabulated entries (0 for analytic ones).
  */
 export interface PhaseRecord {
@@ -80,14 +91,24 @@ export interface PhaseFunctionDefinition<
   /**
    * The WGSL side in shaders/integrator.wesl: the tag constant and the exact expression
    * each case of mediumPhaseEval (scope: medium, wo, wi) and mediumPhaseSample (scope:
-   * medium, wo, u) returns; medium.phase is the ScenePhase of the record.
+   * medium, wo, u) returns; medium.phase is the ScenePhase of the record. A tabulated
+   * entry's case first loads its table (PHASE_TABLE_LOAD) into `scenePhaseTable`.
    */
   wgsl: { tag: string; eval: string; sample: string };
-  /** The float64 twin of those two expressions (the same library functions' twins). */
+  /**
+   * The float64 twin of those two expressions (the same library functions' twins);
+   * `tables` is the packed phase-table buffer (packPhases), which only tabulated
+   * entries read.
+   */
   twin: {
-    eval(phase: PhaseRecord, wo: Vec3, wi: Vec3): number;
-    sample(phase: PhaseRecord, wo: Vec3, u: readonly [number, number]): Vec3;
+    eval(phase: PhaseRecord, wo: Vec3, wi: Vec3, tables: Float32Array): number;
+    sample(phase: PhaseRecord, wo: Vec3, u: readonly [number, number], tables: Float32Array): Vec3;
   };
+  /**
+   * Tabulated entries only: the float64 table of the parameter values (in `parameters`
+   * order), which packPhases rounds to f32 into the phase-table buffer.
+   */
+  tabulate?: (values: readonly number[]) => PhaseTable;
   /** Parameter sets the tests sample and compare across GPU and twin. */
   examples: readonly Readonly<Record<Name, number>>[];
 }
@@ -110,6 +131,51 @@ function definePhase<
  * to the f32 of this; the scene refuses more rather than clamping silently).
  */
 export const HG_G_LIMIT = 0.99999;
+
+/**
+ * Largest Mie size parameter x = 2πr/λ a scene may ask for. Building the table (the series
+ * has ≈ x + 4x^{1/3} terms, summed at up to 16 angles per node) took ≈ 30 ms at x = 200
+ * here, ≈ 150 ms at 500 and 400 ms at 1000; the factor by which mieTabulatePhase rescales
+ * the 513 node values to ∫p dω = 1 (its `normalization`, a measure of how well the nodes
+ * resolve the lobe) is 1.001 at x = 200, 1.005 at 1000. A fog or cloud droplet of radius
+ * 5 µm in green light (λ = 0.55 µm) has x ≈ 57.
+ */
+export const MIE_SIZE_PARAMETER_MAX = 200;
+
+/**
+ * The WGSL statement a tabulated entry's case runs before it returns: the invocation's
+ * private copy `scenePhaseTable` made to hold the record's table, which the mie.wesl
+ * functions take by pointer (WGSL passes no pointer into a storage buffer to a function).
+ */
+export const PHASE_TABLE_LOAD = 'scenePhaseTableLoad(medium.phase.table);';
+
+/** f32 words of one table in the phase-table buffer (shaders/mie.wesl PhaseTable). */
+export const PHASE_TABLE_WORDS = 4 * PHASE_TABLE_NODES;
+
+/** Memoised f64 views of tables in a phase-table buffer, per buffer and table index. */
+const tableViews = new WeakMap<Float32Array, Map<number, PhaseTable>>();
+
+/**
+ * Table `index` of a packed phase-table buffer as the twin's PhaseTable: the f32 words the
+ * GPU reads (columns 1 − μ, 1 + μ, p, C of PHASE_TABLE_NODES each), widened to f64.
+ */
+export function phaseTableAt(tables: Float32Array, index: number): PhaseTable {
+  let views = tableViews.get(tables);
+  if (!views) tableViews.set(tables, (views = new Map()));
+  let table = views.get(index);
+  if (!table) {
+    const base = index * PHASE_TABLE_WORDS;
+    if (!(base + PHASE_TABLE_WORDS <= tables.length))
+      throw new RangeError(`phase table ${index} is not in a buffer of ${tables.length} words`);
+    const column = (c: number): Float64Array =>
+      Float64Array.from(
+        tables.subarray(base + c * PHASE_TABLE_NODES, base + (c + 1) * PHASE_TABLE_NODES),
+      );
+    table = { oneMinusMu: column(0), onePlusMu: column(1), pdf: column(2), cdf: column(3) };
+    views.set(index, table);
+  }
+  return table;
+}
 
 export const PHASE_FUNCTIONS = [
   definePhase({
@@ -167,6 +233,50 @@ export const PHASE_FUNCTIONS = [
     },
     examples: [{}],
   }),
+  definePhase({
+    id: 'mie',
+    label: 'Lorenz–Mie (tabulated)',
+    parameters: [
+      {
+        name: 'sizeParameter',
+        min: 0.01,
+        max: MIE_SIZE_PARAMETER_MAX,
+        description: 'size parameter x = 2πr/λ of the spheres (λ in the surrounding medium)',
+      },
+      {
+        name: 'indexReal',
+        min: 1.01,
+        max: 3,
+        description: 'real part n of the relative refractive index m = n + iκ',
+      },
+      {
+        name: 'indexImaginary',
+        min: 0,
+        max: 10,
+        description: 'imaginary part κ ≥ 0 of the relative refractive index (absorption)',
+      },
+    ],
+    condition: 'phaseMie',
+    wgsl: {
+      tag: 'SCENE_PHASE_MIE',
+      eval: 'phaseTabulatedEvalDirections(&scenePhaseTable, wo, wi)',
+      sample: 'phaseTabulatedSample(&scenePhaseTable, wo, u).wi',
+    },
+    twin: {
+      eval: (phase, wo, wi, tables) =>
+        phaseTabulatedEvalDirections(phaseTableAt(tables, phase.table), wo, wi),
+      sample: (phase, wo, u, tables) =>
+        phaseTabulatedSample(phaseTableAt(tables, phase.table), wo, u).wi,
+    },
+    tabulate: ([x, n, kappa]) => mieTabulatePhase(x!, { n: n!, kappa: kappa! }),
+    // Bohren & Huffman's sphere (x = 3, m = 1.55, BH §4.4); a water fog droplet
+    // (r ≈ 1.75 µm at λ = 0.55 µm: x = 20, m = 1.33); small absorbing soot (m = 1.75 + 0.44i).
+    examples: [
+      { sizeParameter: 3, indexReal: 1.55, indexImaginary: 0 },
+      { sizeParameter: 20, indexReal: 1.33, indexImaginary: 0 },
+      { sizeParameter: 0.5, indexReal: 1.75, indexImaginary: 0.44 },
+    ],
+  }),
 ] as const;
 
 type Entry = (typeof PHASE_FUNCTIONS)[number];
@@ -202,15 +312,74 @@ export function phaseTag(id: PhaseId): number {
   return PHASE_FUNCTIONS.findIndex((e) => e.id === id);
 }
 
-/** The packed record of a validated description: tag, parameters in schema order. */
-export function packPhase(description: PhaseDescription): PhaseRecord {
+/**
+ * The packed record of a validated description: tag, parameters in schema order, and
+ * `table`, the index of its table in the phase-table buffer (packPhases; 0 for analytic
+ * entries).
+ */
+export function packPhase(description: PhaseDescription, table = 0): PhaseRecord {
   const entry = phaseEntry(description.type);
   const named = description as Readonly<Record<string, number | string>>;
   const values: [number, number, number] = [0, 0, 0];
   entry.parameters.forEach((parameter, k) => {
     values[k] = Number(named[parameter.name]);
   });
-  return { kind: phaseTag(description.type), values, table: 0 };
+  return { kind: phaseTag(description.type), values, table };
+}
+
+/** The phase functions of a scene's media, packed: what the kernel and the twin read. */
+export interface PackedPhases {
+  /** One per description, in order. */
+  records: PhaseRecord[];
+  /** The phase-table buffer: PHASE_TABLE_WORDS f32 per distinct tabulated description. */
+  tables: Float32Array<ArrayBuffer>;
+}
+
+/** Tables (f32 words) built recently, by entry and parameter values. */
+const TABLE_CACHE_SIZE = 8;
+const tableCache = new Map<string, Float32Array>();
+
+/** The f32 words of the table of a tabulated entry at `values`, built once per values. */
+function tableWords(entry: PhaseFunctionDefinition, values: readonly number[]): Float32Array {
+  const key = `${entry.id}:${values.join(',')}`;
+  const cached = tableCache.get(key);
+  if (cached) {
+    tableCache.delete(key);
+    tableCache.set(key, cached);
+    return cached;
+  }
+  const table = entry.tabulate!(values);
+  const words = new Float32Array(PHASE_TABLE_WORDS);
+  [table.oneMinusMu, table.onePlusMu, table.pdf, table.cdf].forEach((column, c) =>
+    words.set(column, c * PHASE_TABLE_NODES),
+  );
+  tableCache.set(key, words);
+  while (tableCache.size > TABLE_CACHE_SIZE) tableCache.delete(tableCache.keys().next().value!);
+  return words;
+}
+
+/**
+ * Packs the media's phase functions: records in order, and the table of each distinct
+ * tabulated description (equal parameters share one) appended to the phase-table buffer.
+ */
+export function packPhases(descriptions: readonly PhaseDescription[]): PackedPhases {
+  const keys: string[] = [];
+  const columns: Float32Array[] = [];
+  const records = descriptions.map((description) => {
+    const entry = phaseEntry(description.type);
+    if (!entry.tabulate) return packPhase(description);
+    const values = packPhase(description).values.slice(0, entry.parameters.length);
+    const key = `${entry.id}:${values.join(',')}`;
+    let index = keys.indexOf(key);
+    if (index < 0) {
+      index = keys.push(key) - 1;
+      columns.push(tableWords(entry, values));
+    }
+    return packPhase(description, index);
+  });
+  const tables = new Float32Array(columns.length * PHASE_TABLE_WORDS);
+  columns.forEach((words, i) => tables.set(words, i * PHASE_TABLE_WORDS));
+  return { records, tables };
 }
 
 /**

@@ -27,7 +27,8 @@ import {
   type LightSample,
 } from './lights.ts';
 import { gridDensityTrilinear, gridMajorantAlongRay, type DensityGrid } from './medium.ts';
-import { dispatchedPhase, type PhaseRecord } from '../phase/registry.ts';
+import { dispatchedPhase, phaseTableAt, type PhaseRecord } from '../phase/registry.ts';
+import type { PhaseTable } from './mie.ts';
 import type { Vec3 } from './directions.ts';
 import { rngNextFloat, type RngState } from './rng.ts';
 import { equiangularSample } from './scatter.ts';
@@ -79,6 +80,11 @@ export interface SceneData {
   /** Samples of the density grid and of its majorant grid (x fastest). */
   density: Float32Array;
   majorant: Float32Array;
+  /**
+   * The phase-table buffer (src/phase/registry.ts packPhases; integrator.wesl
+   * scenePhaseTables): the tables of the tabulated phase functions, as f32.
+   */
+  phaseTables: Float32Array;
   /** The WESL conditions the kernel was linked with (absent names are false). */
   conditions: Readonly<Record<string, boolean>>;
   /** Counters of the current pixel, as sceneLookups and sceneCapped. */
@@ -479,9 +485,23 @@ export function shadowTransmittance(
   return sceneTransmittance(scene, origin, direction, distance, state);
 }
 
+/**
+ * Table `index` of the scene's phase-table buffer, as integrator.wesl's private copy
+ * scenePhaseTable after scenePhaseTableLoad (the f32 words widened to f64, memoised; the
+ * tabulated entries' twins read it the same way).
+ */
+export function scenePhaseTableLoad(scene: SceneData, index: number): PhaseTable {
+  return phaseTableAt(scene.phaseTables, index);
+}
+
 /** The medium's phase function (src/phase/registry.ts), as the kernel's conditions allow. */
 export function mediumPhaseEval(scene: SceneData, medium: SceneMedium, wo: Vec3, wi: Vec3): number {
-  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.eval(medium.phase, wo, wi);
+  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.eval(
+    medium.phase,
+    wo,
+    wi,
+    scene.phaseTables,
+  );
 }
 
 export function mediumPhaseSample(
@@ -490,7 +510,12 @@ export function mediumPhaseSample(
   wo: Vec3,
   u: readonly [number, number],
 ): Vec3 {
-  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.sample(medium.phase, wo, u);
+  return dispatchedPhase(medium.phase.kind, scene.conditions).twin.sample(
+    medium.phase,
+    wo,
+    u,
+    scene.phaseTables,
+  );
 }
 
 const NO_LIGHT: LightSample = { direction: [0, 0, 1], distance: 0, irradiance: [0, 0, 0] };

@@ -587,6 +587,20 @@ export function phaseTabulatedEval(table: PhaseTable, mu: number): number {
 }
 
 /**
+ * p for the directions (wo, wi), μ = −wo·wi, with 1 − μ = |wo + wi|²/2 and 1 + μ = |wi − wo|²/2
+ * taken from the directions (no cancellation near either end), in 1/sr.
+ */
+export function phaseTabulatedEvalDirections(table: PhaseTable, wo: Vec3, wi: Vec3): number {
+  let oneMinusMu = 0;
+  let onePlusMu = 0;
+  for (let c = 0; c < 3; c++) {
+    oneMinusMu += (wo[c]! + wi[c]!) ** 2 / 2;
+    onePlusMu += (wi[c]! - wo[c]!) ** 2 / 2;
+  }
+  return phaseTabulatedEvalTerms(table, oneMinusMu, onePlusMu);
+}
+
+/**
  * Inverse CDF of the table: the interval k with C_k ≤ ξ < C_{k+1} by bisection, then inside
  * it the exact inverse of the linear density's quadratic CDF. With p_k = a, p_{k+1} = b and
  * r = (ξ − C_k)/(C_{k+1} − C_k), the fraction s of the interval solves as + (b − a)s²/2 =

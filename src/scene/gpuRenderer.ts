@@ -1,6 +1,6 @@
 // The GPU renderer: links shaders/kernels/scene-render.wesl with the plan's conditions
-// (or the general ones), uploads the packed scene (storage buffer) and the grid
-// (two r32float 3D textures), and runs passes of the kernel, each followed in the same
+// (or the general ones), uploads the packed scene (storage buffer), the grid (two
+// r32float 3D textures) and the phase tables (storage buffer), and runs passes of the kernel, each followed in the same
 // compute pass by the accumulate kernel into a GpuAccumulation that stays on the GPU;
 // a pass reads back only its GPU timestamps. Works in the browser and in Node (Dawn)
 // alike: the caller passes the device and the shader library.
@@ -10,6 +10,7 @@ import { wordsOf, writeStruct } from '../gpu/layout.ts';
 import { sceneRenderKernel } from '../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { GpuTimer } from '../gpu/timing.ts';
+import { PHASE_TABLE_WORDS } from '../phase/registry.ts';
 import type { DensityGridData } from '../reference/medium.ts';
 import { PASS_WORDS_PER_PIXEL, type Accumulation } from './accumulation.ts';
 import { GpuAccumulation } from './gpuAccumulation.ts';
@@ -39,6 +40,10 @@ function bindGroupLayout(device: GPUDevice): GPUBindGroupLayout {
     { binding: 2, visibility, texture },
     { binding: 3, visibility, texture },
     { binding: 4, visibility, buffer: { type: 'uniform' } },
+    // The phase tables (integrator.wesl scenePhaseTables): in every layout, read only by
+    // kernels linked with a tabulated phase function's condition. Three storage buffers in
+    // all, within WebGPU's default maxStorageBuffersPerShaderStage (8).
+    { binding: 5, visibility, buffer: { type: 'read-only-storage' } },
   ]);
 }
 
@@ -139,7 +144,15 @@ export class GpuSceneRenderer implements PassRenderer {
       });
       const density = volumeTexture(device, packed.density);
       const majorant = volumeTexture(device, packed.majorant);
-      made.push(records, output, uniforms, density, majorant);
+      // At least one table's bytes (zeros without tables): the binding's minimum size for
+      // a kernel that declares the runtime-sized array<PhaseTable>.
+      const phaseTables = device.createBuffer({
+        size: Math.max(packed.phaseTables.byteLength, PHASE_TABLE_WORDS * 4),
+        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+      });
+      if (packed.phaseTables.length > 0)
+        device.queue.writeBuffer(phaseTables, 0, packed.phaseTables);
+      made.push(records, output, uniforms, density, majorant, phaseTables);
       const bindGroup = device.createBindGroup({
         layout: bindGroupLayout(device),
         entries: [
@@ -148,6 +161,7 @@ export class GpuSceneRenderer implements PassRenderer {
           { binding: 2, resource: density.createView() },
           { binding: 3, resource: majorant.createView() },
           { binding: 4, resource: { buffer: uniforms } },
+          { binding: 5, resource: { buffer: phaseTables } },
         ],
       });
       return { bindGroup, output, uniforms };

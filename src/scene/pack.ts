@@ -2,8 +2,10 @@
 // the SceneRecords struct (header, camera, grid, majorant grid, media, lights, surfaces;
 // integers stored as their u32 bits) at the offsets derived from its WGSL declaration
 // (SCENE_LAYOUT), and the grid's density and majorant samples for two r32float 3D
-// textures. The same words, read back as f32, are the twin's SceneData, so the CPU
-// renderer sees exactly the GPU's (f32) scene.
+// textures, and the phase-table buffer of the tabulated phase functions (Mie; built
+// here from the media's parameters, src/phase/registry.ts packPhases). The same words,
+// read back as f32, are the twin's SceneData, so the CPU renderer sees exactly the GPU's
+// (f32) scene.
 import { packStruct, type PackValue } from '../gpu/layout.ts';
 import {
   SCENE_BOUNDS_BOX,
@@ -23,7 +25,7 @@ import {
 } from '../reference/lights.ts';
 import type { DensityGridData } from '../reference/medium.ts';
 import { SURFACE_BOX, SURFACE_PLANE, SURFACE_SPHERE } from '../reference/surfaces.ts';
-import { packPhase } from '../phase/registry.ts';
+import { packPhases } from '../phase/registry.ts';
 import type { ResolvedScene } from './load.ts';
 import type { Conditions } from './plan.ts';
 
@@ -34,6 +36,8 @@ export interface PackedScene {
   /** The density grid and its majorant grid (1×1×1 zero grids when the scene has none). */
   density: DensityGridData;
   majorant: DensityGridData;
+  /** The phase-table buffer (PHASE_TABLE_WORDS f32 per table; empty without tables). */
+  phaseTables: Float32Array<ArrayBuffer>;
   width: number;
   height: number;
   seed: number;
@@ -85,9 +89,10 @@ export function packScene(resolved: ResolvedScene): PackedScene {
   const density = grid?.fine ?? EMPTY_GRID;
   const majorant = grid?.majorant ?? EMPTY_GRID;
 
-  const media = scene.media.map((medium): Members<Records['media']> => {
+  const phases = packPhases(scene.media.map((medium) => medium.phase));
+  const media = scene.media.map((medium, index): Members<Records['media']> => {
     // The phase record (src/phase/registry.ts) in the words SceneMediumRecord gives it.
-    const phase = packPhase(medium.phase);
+    const phase = phases.records[index]!;
     const bounds = medium.bounds;
     const sphere = bounds.type === 'sphere';
     return {
@@ -172,6 +177,7 @@ export function packScene(resolved: ResolvedScene): PackedScene {
     words,
     density,
     majorant,
+    phaseTables: phases.tables,
     width: scene.image.width,
     height: scene.image.height,
     seed: scene.seed,
@@ -185,6 +191,7 @@ export function sceneData(packed: PackedScene, conditions: Conditions): SceneDat
     words: packed.words,
     density: packed.density.volume,
     majorant: packed.majorant.volume,
+    phaseTables: packed.phaseTables,
     conditions,
     stats: { lookups: 0, capped: 0 },
   };

@@ -10,7 +10,7 @@ import { ImageAccumulator, type Accumulation } from './accumulation.ts';
 import type { scenePassJobs } from './passJob.ts';
 import type { PassOutput, PassRenderer } from './render.ts';
 
-/** FNV-1a over 32-bit words: identifies a scene's records, grids and conditions. */
+/** FNV-1a over 32-bit words: identifies a scene's records, grids, tables and conditions. */
 function fnv(hash: number, words: ArrayLike<number>): number {
   let h = hash;
   for (let i = 0; i < words.length; i++) {
@@ -20,7 +20,10 @@ function fnv(hash: number, words: ArrayLike<number>): number {
   return h;
 }
 
-/** A hash of everything a pass depends on in the scene (records, grids, conditions). */
+/**
+ * A hash of everything a pass depends on in the scene (records, grids, phase tables,
+ * conditions).
+ */
 export function sceneHash(scene: SceneData): string {
   const u32 = (array: Float32Array): Uint32Array =>
     new Uint32Array(array.buffer, array.byteOffset, array.length);
@@ -28,6 +31,7 @@ export function sceneHash(scene: SceneData): string {
   h = fnv(h, scene.words);
   h = fnv(h, u32(scene.density));
   h = fnv(h, u32(scene.majorant));
+  h = fnv(h, u32(scene.phaseTables));
   const conditions = Object.entries(scene.conditions)
     .filter(([, on]) => on)
     .map(([name]) => name)

@@ -7,8 +7,8 @@
 // Not through tests/support/shaderHarness.ts: there every case carries its arguments,
 // and an 8 KB table per case made SwiftShader and lavapipe take minutes to compile and
 // copy. Here the table is bound once as a storage buffer, as the widget's kernel binds
-// it (kernels/mie-lobe.wesl), and each invocation copies it into the function-scope
-// variable the library's pointer parameters take. wgpu/naga compiles the module in
+// it (kernels/mie-lobe.wesl), and each invocation copies it into the private variable
+// the library's pointer parameters take. wgpu/naga compiles the module in
 // tests/naga/compile.test.ts.
 import { beforeAll, describe, expect, it } from 'vitest';
 import { runCompute } from '../../src/gpu/compute.ts';
@@ -47,13 +47,14 @@ import package::mie::{PhaseTable, PHASE_TABLE_NODES, phaseTabulatedEval, phaseTa
 @group(0) @binding(1) var<storage, read> cases: array<vec4f>;
 @group(0) @binding(2) var<storage, read_write> results: array<f32>;
 
+var<private> local: PhaseTable;
+
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3u) {
   let i = id.x;
   if (i >= arrayLength(&cases)) {
     return;
   }
-  var local: PhaseTable;
   for (var k = 0u; k < PHASE_TABLE_NODES; k++) {
     local.oneMinusMu[k] = table.oneMinusMu[k];
     local.onePlusMu[k] = table.onePlusMu[k];

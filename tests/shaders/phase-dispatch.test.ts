@@ -6,12 +6,16 @@
 // and with no phase condition (every kind falls back to the first entry). Then, per
 // example, GPU samples of mediumPhaseSample against the twin's density (chi-square), so
 // a new entry's WGSL sampler is checked over its whole domain, not only at a few points.
+// Tabulated entries read their tables from the phase-table buffer packPhases builds,
+// bound as the integrator's scenePhaseTables (group 0, binding 5) where the kernel
+// declares it, and given to the twin as SceneData.phaseTables.
 import { beforeAll, describe, expect, it } from 'vitest';
 import { linkKernel } from '../../src/gpu/link.ts';
 import {
   PHASE_CONDITIONS,
   PHASE_FUNCTIONS,
-  packPhase,
+  PHASE_TABLE_WORDS,
+  packPhases,
   type PhaseDescription,
   type PhaseRecord,
 } from '../../src/phase/registry.ts';
@@ -33,6 +37,7 @@ import {
   expectedMuCounts,
   MU_BINS,
   PHI_BINS,
+  phaseBreakpoints,
   phaseOfMu,
 } from '../support/phaseStatistics.ts';
 import { chiSquareSurvival } from '../../src/statistics/distributions.ts';
@@ -74,13 +79,21 @@ const unit = (v: readonly number[]): Vec3 => {
   return f32(v.map((c) => c / n)) as unknown as Vec3;
 };
 
+/** Every example of every entry, in order. */
+const EXAMPLE_PHASES: PhaseDescription[] = PHASE_FUNCTIONS.flatMap((entry) =>
+  entry.examples.map((example) => ({ type: entry.id, ...example }) as PhaseDescription),
+);
+/** Their records and the phase-table buffer of the tabulated ones. */
+const PACKED = packPhases(EXAMPLE_PHASES);
+
 /** Each example of each entry, at a few direction pairs and random pairs u. */
 function dispatchCases(): DispatchCase[] {
   const wos = [unit([0.3, -0.5, 0.81]), unit([0, 0, 1]), unit([-0.9, 0.1, -0.05])];
   const cases: DispatchCase[] = [];
+  let index = 0;
   for (const entry of PHASE_FUNCTIONS)
     for (const example of entry.examples) {
-      const phase = packPhase({ type: entry.id, ...example } as PhaseDescription);
+      const phase = PACKED.records[index++]!;
       const f32Phase: PhaseRecord = {
         ...phase,
         values: f32(phase.values) as unknown as PhaseRecord['values'],
@@ -112,8 +125,16 @@ function packCase(c: DispatchCase, floats: Float32Array, words: Uint32Array, o: 
   words[o + 14] = c.phase.table;
 }
 
-/** Runs `code` (bindings group 1: input, then `count` vec4f results) and reads them back. */
-async function dispatch(code: string, input: ArrayBuffer, count: number): Promise<Float32Array> {
+/**
+ * Runs `code` (bindings group 1: input, then `count` vec4f results; group 0 binding 5: the
+ * phase tables, where the code declares them) and reads them back.
+ */
+async function dispatch(
+  code: string,
+  input: ArrayBuffer,
+  count: number,
+  tables: Float32Array<ArrayBuffer>,
+): Promise<Float32Array> {
   const device = await nodeDevice();
   const usage = GPUBufferUsage;
   const inputBuffer = device.createBuffer({
@@ -139,9 +160,22 @@ async function dispatch(code: string, input: ArrayBuffer, count: number): Promis
       { binding: 1, resource: { buffer: results } },
     ],
   });
+  const tableBuffer = device.createBuffer({
+    size: Math.max(tables.byteLength, PHASE_TABLE_WORDS * 4),
+    usage: usage.STORAGE | usage.COPY_DST,
+  });
+  if (tables.length > 0) device.queue.writeBuffer(tableBuffer, 0, tables);
   const encoder = device.createCommandEncoder();
   const pass = encoder.beginComputePass();
   pass.setPipeline(pipeline);
+  if (code.includes('scenePhaseTables'))
+    pass.setBindGroup(
+      0,
+      device.createBindGroup({
+        layout: pipeline.getBindGroupLayout(0),
+        entries: [{ binding: 5, resource: { buffer: tableBuffer } }],
+      }),
+    );
   pass.setBindGroup(1, bindGroup);
   pass.dispatchWorkgroups(Math.ceil(count / 64));
   pass.end();
@@ -152,7 +186,7 @@ async function dispatch(code: string, input: ArrayBuffer, count: number): Promis
   await readback.mapAsync(GPUMapMode.READ);
   const output = new Float32Array(readback.getMappedRange().slice(0));
   readback.unmap();
-  for (const buffer of [inputBuffer, results, readback]) buffer.destroy();
+  for (const buffer of [inputBuffer, results, readback, tableBuffer]) buffer.destroy();
   return output;
 }
 
@@ -164,11 +198,16 @@ async function runOnGpu(
   const floats = new Float32Array(input);
   const words = new Uint32Array(input);
   cases.forEach((c, i) => packCase(c, floats, words, i * CASE_WORDS));
-  return dispatch(await linkKernel(SHADER_LIBRARY, KERNEL, conditions), input, cases.length);
+  return dispatch(
+    await linkKernel(SHADER_LIBRARY, KERNEL, conditions),
+    input,
+    cases.length,
+    PACKED.tables,
+  );
 }
 
 function twinOf(conditions: Conditions, c: DispatchCase): number[] {
-  const scene = { conditions } as unknown as SceneData;
+  const scene = { conditions, phaseTables: PACKED.tables } as unknown as SceneData;
   const medium = { phase: c.phase } as unknown as SceneMedium;
   return [
     ...mediumPhaseSample(scene, medium, c.wo, c.u),
@@ -242,19 +281,23 @@ describe(`integrator.wesl mediumPhaseSample on the GPU: ${GPU_SAMPLES} samples p
   for (const entry of PHASE_FUNCTIONS)
     for (const example of entry.examples) {
       it(`${entry.id} ${JSON.stringify(example)} (χ² in μ, ${MU_BINS} bins, and in azimuth, ${PHI_BINS} bins)`, async () => {
-        const record = packPhase({ type: entry.id, ...example } as PhaseDescription);
+        const { records, tables } = packPhases([
+          { type: entry.id, ...example } as PhaseDescription,
+        ]);
+        const record = records[0]!;
         const input = new ArrayBuffer(CASE_WORDS * 4);
         const c: DispatchCase = { name: '', phase: record, wo, wi: wo, u: [0, 0] };
         packCase(c, new Float32Array(input), new Uint32Array(input), 0);
         const code = await linkKernel(SHADER_LIBRARY, SAMPLING_KERNEL, GENERAL_CONDITIONS);
-        const output = await dispatch(code, input, GPU_SAMPLES);
+        const output = await dispatch(code, input, GPU_SAMPLES, tables);
         const builder = new DirectionHistogramBuilder(wo);
         for (let i = 0; i < GPU_SAMPLES; i++)
           builder.add([output[4 * i]!, output[4 * i + 1]!, output[4 * i + 2]!]);
         const { mu, phi, lengthError } = builder.histogram;
         expect(lengthError, 'every wi is a unit vector (f32)').toBeLessThan(1e-5);
-        const p = phaseOfMu(entry, record, wo);
-        const muStatistic = chiSquare(mu, expectedMuCounts(p, GPU_SAMPLES));
+        const p = phaseOfMu(entry, record, wo, tables);
+        const breakpoints = phaseBreakpoints(entry, record, tables);
+        const muStatistic = chiSquare(mu, expectedMuCounts(p, GPU_SAMPLES, breakpoints));
         expect(
           chiSquareSurvival(muStatistic, MU_BINS - 1),
           `χ² in μ = ${muStatistic}`,

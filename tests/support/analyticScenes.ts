@@ -1,4 +1,5 @@
 // Scenes with analytic answers for the renderer tests (CPU twin and GPU alike).
+import { mieTabulatePhase, miePhase, phaseTabulatedEval } from '../../src/reference/mie.ts';
 import { hgEval } from '../../src/reference/phase.ts';
 import { singleScatterHomogeneousSlab } from '../../src/reference/scatter.ts';
 import { simpson } from './quadrature.ts';
@@ -14,8 +15,18 @@ const SIGMA_S = [0.8, 0.5, 1.2];
 const IRRADIANCE = [1, 2, 0.5];
 const G = 0.3;
 
-/** The physics.md §5 setting as a scene: a homogeneous (or constant-grid) slab, camera inside. */
-export function slabScene(kind: 'homogeneous' | 'grid', order: number | 'unlimited' = 1) {
+/** μ = −wo·wi of the slab's single scattering: camera straight down, light at θ. */
+export const SLAB_SCATTERING_COSINE = -Math.cos(THETA);
+
+/**
+ * The physics.md §5 setting as a scene: a homogeneous (or constant-grid) slab, camera
+ * inside; HG with g = 0.3 unless `phase` is given.
+ */
+export function slabScene(
+  kind: 'homogeneous' | 'grid',
+  order: number | 'unlimited' = 1,
+  phase: Record<string, unknown> = { type: 'henyey-greenstein', g: G },
+) {
   return {
     image: { width: 4, height: 4 },
     samplesPerPixel: 64,
@@ -35,7 +46,7 @@ export function slabScene(kind: 'homogeneous' | 'grid', order: number | 'unlimit
         bounds: { type: 'box', min: [-1000, 0, -1000], max: [1000, 1, 1000] },
         sigmaA: SIGMA_A,
         sigmaS: SIGMA_S,
-        phase: { type: 'henyey-greenstein', g: G },
+        phase,
         ...(kind === 'grid' ? { grid: { dimensions: [1, 1, 1], density: [1] } } : {}),
       },
     ],
@@ -49,10 +60,12 @@ export function slabScene(kind: 'homogeneous' | 'grid', order: number | 'unlimit
   };
 }
 
-/** physics.md §5 closed form per channel, on the f32 inputs the renderer sees. */
-export function slabExact(channel: number): number {
+/**
+ * physics.md §5 closed form per channel, on the f32 inputs the renderer sees; `phase` is
+ * p(SLAB_SCATTERING_COSINE) in 1/sr (the default scene's HG g = 0.3).
+ */
+export function slabExact(channel: number, phase = hgEval(f32(G), SLAB_SCATTERING_COSINE)): number {
   const cos = Math.cos(THETA);
-  const phase = hgEval(f32(G), -cos);
   return singleScatterHomogeneousSlab(
     f32(SIGMA_S[channel]!),
     f32(SIGMA_A[channel]!),
@@ -62,6 +75,35 @@ export function slabExact(channel: number): number {
     1 / cos,
     1 - DEPTH,
   );
+}
+
+/** Bohren & Huffman's sphere (x = 3, m = 1.55) as a scene phase function: a smooth lobe. */
+export const BH_SPHERE = { type: 'mie', sizeParameter: 3, indexReal: 1.55, indexImaginary: 0 };
+
+/**
+ * BH_SPHERE's phase function from the Mie series at the slab's scattering angle, and the
+ * deviation of its 513-node table (src/reference/mie.ts mieTabulatePhase, which the
+ * renderer reads) from it there: interpolation and normalisation of the table.
+ */
+export function bhSphereSlabPhase(): { series: number; tableError: number } {
+  const m = { n: BH_SPHERE.indexReal, kappa: BH_SPHERE.indexImaginary };
+  const series = miePhase(BH_SPHERE.sizeParameter, m, SLAB_SCATTERING_COSINE);
+  const table = phaseTabulatedEval(
+    mieTabulatePhase(BH_SPHERE.sizeParameter, m),
+    SLAB_SCATTERING_COSINE,
+  );
+  return { series, tableError: Math.abs(table - series) };
+}
+
+/**
+ * The systematic allowance of a BH_SPHERE slab render against slabExact with the series
+ * phase: the table's relative error at that angle (L ∝ p) plus `arithmetic` (relative; f32
+ * or f64 rounding), times the largest channel.
+ */
+export function mieSlabSystematic(arithmetic: number): number {
+  const { series, tableError } = bhSphereSlabPhase();
+  const largest = Math.max(...[0, 1, 2].map((c) => slabExact(c, series)));
+  return ((tableError / series) * 1.01 + arithmetic) * largest;
 }
 
 const H = 0.5;

@@ -2,8 +2,13 @@
 // and tests/shaders/phase-dispatch): for a rotationally symmetric phase function, the
 // probability of each μ bin by quadrature of its own evaluation, histograms of sampled
 // directions in μ = −wo·wi and in the azimuth around the direction of travel −wo, and
-// Pearson's chi-square statistic.
-import type { PhaseFunctionDefinition, PhaseRecord } from '../../src/phase/registry.ts';
+// Pearson's chi-square statistic. Tabulated entries pass the packed phase-table buffer
+// (src/phase/registry.ts packPhases) that their twins read.
+import {
+  phaseTableAt,
+  type PhaseFunctionDefinition,
+  type PhaseRecord,
+} from '../../src/phase/registry.ts';
 import {
   directionAroundAxis,
   orthonormalBasis,
@@ -40,17 +45,41 @@ const GAUSS = (() => {
 
 /**
  * ∫ 2π p(μ) dμ over [a, b] for p of a rotationally symmetric phase function: 64 panels
- * of 16-point Gauss–Legendre, accurate to ~1e-9 even for the HG g = 0.9 peak.
+ * of 16-point Gauss–Legendre, accurate to ~1e-9 even for the HG g = 0.9 peak. A
+ * tabulated p (piecewise linear in μ, hundreds of kinks under the forward peak) passes
+ * its nodes as `breakpoints`: the panels then also split there, so that each is exact.
  */
-export function probability(p: (mu: number) => number, a: number, b: number): number {
+export function probability(
+  p: (mu: number) => number,
+  a: number,
+  b: number,
+  breakpoints: readonly number[] = [],
+): number {
   const panels = 64;
+  const ends = [
+    ...Array.from({ length: panels + 1 }, (_, k) => a + ((b - a) * k) / panels),
+    ...breakpoints.filter((mu) => mu > a && mu < b),
+  ].sort((x, y) => x - y);
   let sum = 0;
-  for (let k = 0; k < panels; k++) {
-    const lo = a + ((b - a) * k) / panels;
-    const half = (b - a) / panels / 2;
+  for (let k = 0; k + 1 < ends.length; k++) {
+    const lo = ends[k]!;
+    const half = (ends[k + 1]! - lo) / 2;
     GAUSS.nodes.forEach((x, i) => (sum += GAUSS.weights[i]! * half * p(lo + half * (1 + x))));
   }
   return 2 * Math.PI * sum;
+}
+
+/**
+ * The cosines μ_k at which the record's phase function has kinks: the nodes of its table
+ * for a tabulated entry (src/phase/registry.ts phaseTableAt), none for analytic ones.
+ */
+export function phaseBreakpoints(
+  entry: PhaseFunctionDefinition,
+  record: PhaseRecord,
+  tables: Float32Array,
+): number[] {
+  if (!entry.tabulate) return [];
+  return Array.from(phaseTableAt(tables, record.table).oneMinusMu, (t) => 1 - t);
 }
 
 /** The entry's twin evaluation as a function of μ, for a fixed wo (azimuth uPhi). */
@@ -58,18 +87,29 @@ export function phaseOfMu(
   entry: PhaseFunctionDefinition,
   record: PhaseRecord,
   wo: Vec3,
+  tables: Float32Array = new Float32Array(0),
   uPhi = 0.37,
 ): (mu: number) => number {
   const travel: Vec3 = [-wo[0], -wo[1], -wo[2]];
   return (mu) =>
-    entry.twin.eval(record, wo, directionAroundAxis(travel, mu, Math.sqrt(1 - mu * mu), uPhi));
+    entry.twin.eval(
+      record,
+      wo,
+      directionAroundAxis(travel, mu, Math.sqrt(1 - mu * mu), uPhi),
+      tables,
+    );
 }
 
 /** Expected counts of `samples` draws in MU_BINS equal bins of μ ∈ [−1, 1]. */
-export function expectedMuCounts(p: (mu: number) => number, samples: number): number[] {
+export function expectedMuCounts(
+  p: (mu: number) => number,
+  samples: number,
+  breakpoints: readonly number[] = [],
+): number[] {
   return Array.from(
     { length: MU_BINS },
-    (_, k) => samples * probability(p, -1 + (2 * k) / MU_BINS, -1 + (2 * (k + 1)) / MU_BINS),
+    (_, k) =>
+      samples * probability(p, -1 + (2 * k) / MU_BINS, -1 + (2 * (k + 1)) / MU_BINS, breakpoints),
   );
 }
 

@@ -29,6 +29,7 @@ export const EXAMPLE_SCENES = [
   'white-furnace',
   'rayleigh-haze',
   'spheres-on-floor',
+  'mie-fog',
 ] as const;
 
 export function exampleSceneJson(name: string): Record<string, unknown> {
