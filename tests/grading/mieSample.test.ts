@@ -221,8 +221,9 @@ describe('mie-sample on the GPU', () => {
     // interval K, of mass 1, at r = 0, which gives node K: μ = −1).
     const library = `import package::mie::PhaseTable;
 import package::mie::phaseTabulatedSampleMu;
+// The library's table functions take a pointer to a private table (shaders/mie.wesl).
+var<private> full: PhaseTable;
 fn sampleMieMu(table: u32, xi: f32) -> f32 {
-  var full: PhaseTable;
   for (var k = 0u; k < MIE_TABLE_NODES; k++) {
     full.oneMinusMu[k] = tableOneMinusMu(table, k);
     full.onePlusMu[k] = tableOnePlusMu(table, k);
