@@ -18,7 +18,7 @@ import { tmpdir } from 'node:os';
 import { extname, join, relative, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test, type Page } from '@playwright/test';
-import { waitForRender } from './support.ts';
+import { waitForPicture } from './support.ts';
 
 const ROOT = fileURLToPath(new URL('../..', import.meta.url));
 const SUB_PATH = '/courses/cmsc740/book/';
@@ -271,13 +271,14 @@ async function visit(page: Page, url: string): Promise<void> {
   );
   await page.evaluate(() => document.fonts.ready.then(() => undefined));
   if (FETCHING_WIDGETS.length === 0) return;
-  // A figure fetches before it draws: its first data response, or its first frame
-  // where its state needs no file (the single-scatter fog), is enough.
+  // A figure fetches before it draws: its first data response, or its first picture
+  // where its state needs no file (the single-scatter fog, figures whose only fetch is
+  // their kernel's WGSL), is enough; waiting for full refinement would not fetch more.
   for (const widget of await page.locator(`:is(${FETCHING_WIDGETS.join(', ')}):visible`).all()) {
     const fetched = page.waitForResponse((response) => /\.(?:bin|f32)$/.test(response.url()), {
       timeout: 60_000,
     });
-    await Promise.race([fetched, waitForRender(widget)]);
+    await Promise.race([fetched, waitForPicture(widget)]);
     fetched.catch(() => undefined);
   }
 }
