@@ -286,7 +286,9 @@ async function visit(page: Page, url: string): Promise<void> {
 test('browser pass: every page of the sub-path build loads with no failed request and no console error', async ({
   page,
 }) => {
-  test.setTimeout(300_000);
+  // About 30 pages, each drawing its visible figures' first pictures on SwiftShader: 4–5
+  // minutes on a loaded two-core machine, so the allowance leaves room above that.
+  test.setTimeout(480_000);
   const site = await serve(subDist, SUB_PATH);
   const problems: string[] = [];
   let current = '';
