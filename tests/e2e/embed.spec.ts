@@ -7,7 +7,13 @@ import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import { PNG } from 'pngjs';
 import { WIDGET_CATALOG } from '../../src/widgets/catalog.ts';
-import { canvasStats, trackErrors, waitForRender } from './support.ts';
+import {
+  canvasStats,
+  trackErrors,
+  waitForPicture,
+  waitForRender,
+  waitForSettled,
+} from './support.ts';
 
 /**
  * For each widget, one parameter set away from its chapter's value, chosen to change
@@ -99,7 +105,10 @@ for (const widget of Object.keys(WIDGET_CATALOG)) {
     let picture: Buffer | null = null;
     if (change) {
       const [name, value] = change;
-      await waitForRender(element);
+      // Full refinement (the picture compared below): single-scatter's takes over 45 s
+      // on a loaded two-core machine, so it gets longer than waitForRender allows.
+      await waitForPicture(element);
+      await waitForSettled(element, 120_000);
       await expect(control(element, name)).toHaveValue(value);
       const changed = await canvasStats(element.locator('canvas.sb-canvas').first());
       expect(changed.luminanceDeviation, 'the canvas shows a picture').toBeGreaterThan(3);
