@@ -12,7 +12,7 @@
 // each distinct kernel is compiled once (the pipeline cache is per device).
 import { beforeAll, describe, it } from 'vitest';
 import type { ResolvedScene } from '../../src/scene/load.ts';
-import { renderScene, type SceneRenderOptions } from '../../src/scene/renderScene.ts';
+import type { SceneRenderOptions } from '../../src/scene/renderScene.ts';
 import {
   pointLightExact,
   pointLightScene,
@@ -21,29 +21,23 @@ import {
 } from '../support/analyticScenes.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 import {
-  estimateOf,
+  cpuEstimate,
+  gpuEstimate,
   exampleScene,
   expectAgreement,
   expectMatchesExact,
   sceneFrom,
   type ImageEstimate,
 } from '../support/sceneRender.ts';
-import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 
 let device: GPUDevice;
 beforeAll(async () => {
   device = await nodeDevice();
 }, 60_000);
 
-const gpu = async (
-  scene: ResolvedScene,
-  options: SceneRenderOptions = {},
-): Promise<ImageEstimate> =>
-  estimateOf(await renderScene(scene, { kind: 'gpu', device, library: SHADER_LIBRARY }, options));
-const cpu = async (
-  scene: ResolvedScene,
-  options: SceneRenderOptions = {},
-): Promise<ImageEstimate> => estimateOf(await renderScene(scene, { kind: 'cpu' }, options));
+const gpu = (scene: ResolvedScene, options?: SceneRenderOptions): Promise<ImageEstimate> =>
+  gpuEstimate(device, scene, options);
+const cpu = cpuEstimate;
 
 const SMALL = { image: { width: 8, height: 8 }, samplesPerPixel: 32 };
 // Linking and compiling a kernel in SwiftShader takes seconds on a loaded machine.

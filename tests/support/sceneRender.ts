@@ -16,8 +16,13 @@ import { fileURLToPath } from 'node:url';
 import { expect } from 'vitest';
 import { resolveScene, type ResolvedScene } from '../../src/scene/load.ts';
 import { nodeFileReader } from '../../src/scene/loadNode.ts';
-import type { SceneRender } from '../../src/scene/renderScene.ts';
+import {
+  renderScene,
+  type SceneRender,
+  type SceneRenderOptions,
+} from '../../src/scene/renderScene.ts';
 import { parseScene } from '../../src/scene/validate.ts';
+import { SHADER_LIBRARY } from './shaderLibrary.ts';
 
 export const SCENES_DIRECTORY = fileURLToPath(new URL('../../public/scenes/', import.meta.url));
 
@@ -69,6 +74,25 @@ export function estimateOf(render: SceneRender): ImageEstimate {
     se: acc.standardError(),
     samples: acc.samples,
   };
+}
+
+/** The scene rendered by the WGSL kernel on `device` (Dawn in the tests), as an estimate. */
+export async function gpuEstimate(
+  device: GPUDevice,
+  scene: ResolvedScene,
+  options: SceneRenderOptions = {},
+): Promise<ImageEstimate> {
+  return estimateOf(
+    await renderScene(scene, { kind: 'gpu', device, library: SHADER_LIBRARY }, options),
+  );
+}
+
+/** The scene rendered by the float64 twin, as an estimate. */
+export async function cpuEstimate(
+  scene: ResolvedScene,
+  options: SceneRenderOptions = {},
+): Promise<ImageEstimate> {
+  return estimateOf(await renderScene(scene, { kind: 'cpu' }, options));
 }
 
 export interface Agreement {
