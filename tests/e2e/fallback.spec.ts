@@ -6,6 +6,7 @@ import {
   chapterPages,
   parseDisplayed,
   trackErrors,
+  waitForPicture,
   waitForRender,
   WIDGET_SELECTOR,
 } from './support.ts';
@@ -20,7 +21,10 @@ for (const chapter of chapterPages()) {
     const errors = trackErrors(page);
     await page.goto(chapter.path);
     for (const widget of await page.locator(WIDGET_SELECTOR).all()) {
-      await waitForRender(widget);
+      // The first picture is enough to show the fallback and its notice; the float64
+      // twins' full refinement takes tens of seconds per chapter on two cores, and the
+      // numbers are checked below and in each widget's own ?backend=cpu test.
+      await waitForPicture(widget);
       await expect(widget.locator('.sb-notice--warning')).toContainText('WebGPU is not available');
       // An exercise (sb-exercise) is an editor, not a figure: without WebGPU it has nothing
       // to draw (its checks run WGSL on a GPU), so only figures are checked for a picture.
