@@ -43,8 +43,6 @@ const CHEAPER: Readonly<Record<string, Readonly<Record<string, string>>>> = {
   // the default 65 536 photons took over a minute; 4 096 gather about as many per pixel
   // as the chapter's figure does.
   'photon-map': { photons: '4096' },
-  // A target of 16 samples per pixel instead of 256 (the reference is a multiple of it).
-  'single-scatter': { spp: '16' },
   // 32×32 pictures instead of 64×64, and a path-traced target of 2⁶ spp instead of 2¹⁰.
   'translucent-render': { size: '32', spp: '6' },
   // One sample per pixel per frame instead of four.
