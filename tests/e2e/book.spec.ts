@@ -1,9 +1,9 @@
 // The book as a reader meets it: every page loads without errors, math is
 // typeset, navigation works, the pages pass an accessibility check in both themes,
 // and pages stay readable without JavaScript.
-import AxeBuilder from '@axe-core/playwright';
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import {
+  axeViolations,
   bookPages,
   chapterPages,
   trackErrors,
@@ -31,36 +31,6 @@ test('the home page lists every chapter in order', async ({ page }) => {
   }
   expect(errors).toEqual([]);
 });
-
-/**
- * axe-core's WCAG 2.1 A/AA violations on the page as it is now, one line each. KaTeX's
- * HTML rendering (`.katex-html`) is left out: it is the aria-hidden visual copy of the
- * MathML beside it, which axe does check, and it has no colour of its own (the book sets
- * none; it inherits the prose's, which is checked). It is removed from the page, not
- * only excluded: axe builds its tree over the whole document, and on a math-heavy page
- * these spans are most of the nodes (30,000 of 46,000 in the appendix), which halves
- * axe's time. Call it after every other check of the page.
- *
- * `colourOnly`: the rules a theme can change (contrast, links told apart by colour), for
- * the second theme; the rest of WCAG does not depend on colours and ran in the first.
- */
-async function axeViolations(page: Page, colourOnly = false): Promise<string[]> {
-  // Layout is final once the math fonts have loaded.
-  await page.evaluate(() => document.fonts.ready.then(() => undefined));
-  await page.evaluate(() => {
-    for (const copy of document.querySelectorAll('.katex-html')) copy.remove();
-  });
-  const builder = new AxeBuilder({ page });
-  const results = await (
-    colourOnly
-      ? builder.withRules(['color-contrast', 'link-in-text-block'])
-      : builder.withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa'])
-  ).analyze();
-  return results.violations.map(
-    (violation) =>
-      `${violation.id}: ${violation.nodes.map((node) => node.target.join(' ')).join(', ')}`,
-  );
-}
 
 /**
  * The shader-library appendix has one entry per library function (328), each written by

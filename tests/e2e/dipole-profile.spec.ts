@@ -29,9 +29,11 @@ async function standardErrors(widget: Locator): Promise<number[]> {
   return (await readout(widget, 'mc-se')).split('·').map((part) => parseDisplayed(part.trim()));
 }
 
-test('draws the lit disc and the profile plot on the GPU, with the published dipole totals', async ({
+test('draws the lit disc and the profile plot on the GPU, with the published dipole totals; a hand edit, a preset and presentation mode change them', async ({
   page,
 }) => {
+  // Four refinements to full quality one after the other (load, edit, preset, preset key).
+  test.setTimeout(150_000);
   const errors = trackErrors(page);
   const widget = await openWidget(page);
   const disc = await canvasStats(widget.locator('canvas.sb-canvas').first());
@@ -50,15 +52,24 @@ test('draws the lit disc and the profile plot on the GPU, with the published dip
   await expect(widget.locator('.sb-cost')).toContainText('WebGPU');
   await expect(widget.locator('.sb-notice--warning')).toHaveCount(0);
   expect(Number(await widget.getAttribute('data-frame-ms'))).toBeGreaterThan(0);
-  expect(errors).toEqual([]);
-});
 
-test('a material preset changes the picture, the coefficients and the numbers', async ({
-  page,
-}) => {
-  const widget = await openWidget(page);
+  // Editing a coefficient by hand leaves the preset and recomputes the totals.
+  let rendered = Number(await widget.getAttribute('data-rendered'));
+  const sigmaA = control(widget, 'sigma-a-r');
+  await sigmaA.fill('0.5');
+  await sigmaA.dispatchEvent('change');
+  await waitForRender(widget, rendered + 1);
+  await expect(control(widget, 'material')).toHaveValue('manual');
+  const expected = dipoleTotalReflectance(dipoleParameters(0.74, 0.5, 1.3));
+  await expect
+    .poll(async () => parseDisplayed(await readout(widget, 'total-dipole-r')), {
+      message: 'the hand-edited total follows the dipole of σs′ = 0.74, σa = 0.5, η = 1.3',
+    })
+    .toBeCloseTo(expected, 3);
+
+  // A material preset changes the picture, the coefficients and the numbers.
   const before = await canvasStats(widget.locator('canvas.sb-canvas').first());
-  const rendered = Number(await widget.getAttribute('data-rendered'));
+  rendered = Number(await widget.getAttribute('data-rendered'));
   await control(widget, 'material').selectOption('ketchup');
   await waitForRender(widget, rendered + 1);
   // physics.md §6.1, Ketchup: R_d = 0.163836, 0.006337, 0.001830.
@@ -69,32 +80,70 @@ test('a material preset changes the picture, the coefficients and the numbers', 
   await expect(control(widget, 'sigma-s-r')).toHaveValue('0.18');
   await expect(control(widget, 'sigma-a-b')).toHaveValue('1.45');
   const after = await canvasStats(widget.locator('canvas.sb-canvas').first());
-  expect(after.png.equals(before.png)).toBe(false);
+  expect(after.png.equals(before.png), 'ketchup changes the picture').toBe(false);
   await expect.poll(() => page.url()).toContain('material=ketchup');
-});
 
-test('editing a coefficient by hand leaves the preset and recomputes the totals', async ({
-  page,
-}) => {
-  const widget = await openWidget(page);
-  const rendered = Number(await widget.getAttribute('data-rendered'));
-  const sigmaA = control(widget, 'sigma-a-r');
-  await sigmaA.fill('0.5');
-  await sigmaA.dispatchEvent('change');
-  await waitForRender(widget, rendered + 1);
-  await expect(control(widget, 'material')).toHaveValue('manual');
-  const expected = dipoleTotalReflectance(dipoleParameters(0.74, 0.5, 1.3));
+  // Presentation mode: F enters, number keys recall materials, Esc leaves.
+  await control(widget, 'eta').focus();
+  await widget.locator('input[type="range"]').first().focus();
+  await page.keyboard.press('f');
+  const shell = widget.locator('.sb-widget');
+  await expect(shell).toHaveClass(/is-presenting/);
+  await expect(widget.locator('.sb-dp-profile')).toBeInViewport();
+  await page.keyboard.press('2');
+  await expect(widget.locator('.sb-preset-toast')).toHaveText('2 · Marble');
+  await expect(control(widget, 'material')).toHaveValue('marble');
+  await expect(control(widget, 'eta')).toHaveValue('1.5');
+  // physics.md §6.1, Marble R: 0.830191.
   await expect
-    .poll(async () => parseDisplayed(await readout(widget, 'total-dipole-r')))
-    .toBeCloseTo(expected, 3);
+    .poll(async () => parseDisplayed(await readout(widget, 'total-dipole-r')), { timeout: 30_000 })
+    .toBeCloseTo(0.8302, 4);
+  await page.keyboard.press('Escape');
+  await expect(shell).not.toHaveClass(/is-presenting/);
+  expect(errors).toEqual([]);
 });
 
-test('More photons grows the Monte Carlo and shrinks its error bars; Cancel stops it', async ({
+test('a deep link restores the state exactly; More photons grows the Monte Carlo and shrinks its error bars; Cancel stops it', async ({
   page,
 }) => {
+  test.setTimeout(150_000);
   const errors = trackErrors(page);
-  // Target 2^13 photons per channel: a few steps on SwiftShader.
-  const widget = await openWidget(page, { photons: '13' });
+  // Every setting away from its default. The coefficients keep the walks about as long
+  // as skin1's (model.ts's expectedCollisions: 114 collisions per photon against 98), so
+  // the first run is 1024 photons per channel as for skin1 (firstRunPhotons) and the run
+  // below to 2^13 is 8× that, a few steps on SwiftShader; conservative coefficients
+  // (σa → 0) would make it many times longer.
+  const state = {
+    material: 'manual',
+    'sigma-s-r': '1.5',
+    'sigma-s-g': '1.2',
+    'sigma-s-b': '0.8',
+    'sigma-a-r': '0.1',
+    'sigma-a-g': '0.2',
+    'sigma-a-b': '0.5',
+    eta: '1.45',
+    g: '0.3',
+    exposure: '2',
+    view: '6',
+    seed: '42',
+    photons: '13',
+  };
+  const widget = await openWidget(page, state);
+  for (const [name, value] of Object.entries(state))
+    await expect(control(widget, name), `${name} from the link`).toHaveValue(value);
+  await expect(widget.locator('.sb-cost')).toContainText('HG g = 0.3');
+  await expect(widget.locator('.sb-cost')).toContainText('η = 1.45');
+  const expected = [
+    [1.5, 0.1],
+    [1.2, 0.2],
+    [0.8, 0.5],
+  ].map(([sp, sa]) => dipoleTotalReflectance(dipoleParameters(sp!, sa!, 1.45)));
+  for (const [c, key] of ['r', 'g', 'b'].entries())
+    expect(
+      parseDisplayed(await readout(widget, `total-dipole-${key}`)),
+      `dipole total ${key}`,
+    ).toBeCloseTo(expected[c]!, 3);
+
   const firstSe = await standardErrors(widget);
   const plot = widget.locator('.sb-dp-profile canvas').first();
   const plotBefore = await plot.screenshot();
@@ -122,60 +171,6 @@ test('More photons grows the Monte Carlo and shrinks its error bars; Cancel stop
   await expect(widget.locator('.sb-dp-status')).toContainText('cancelled');
   await expect(more).toBeEnabled();
   expect(errors).toEqual([]);
-});
-
-test('a deep link restores the state exactly', async ({ page }) => {
-  const widget = await openWidget(page, {
-    material: 'manual',
-    'sigma-s-r': '2.5',
-    'sigma-s-g': '1.5',
-    'sigma-s-b': '0.8',
-    'sigma-a-r': '0.01',
-    'sigma-a-g': '0.05',
-    'sigma-a-b': '0.2',
-    eta: '1.45',
-    g: '0.5',
-    exposure: '2',
-    view: '6',
-    seed: '42',
-  });
-  await expect(control(widget, 'material')).toHaveValue('manual');
-  await expect(control(widget, 'sigma-s-g')).toHaveValue('1.5');
-  await expect(control(widget, 'eta')).toHaveValue('1.45');
-  await expect(control(widget, 'g')).toHaveValue('0.5');
-  await expect(control(widget, 'seed')).toHaveValue('42');
-  await expect(widget.locator('.sb-cost')).toContainText('HG g = 0.5');
-  await expect(widget.locator('.sb-cost')).toContainText('η = 1.45');
-  const expected = [
-    [2.5, 0.01],
-    [1.5, 0.05],
-    [0.8, 0.2],
-  ].map(([sp, sa]) => dipoleTotalReflectance(dipoleParameters(sp!, sa!, 1.45)));
-  for (const [c, key] of ['r', 'g', 'b'].entries())
-    expect(parseDisplayed(await readout(widget, `total-dipole-${key}`))).toBeCloseTo(
-      expected[c]!,
-      3,
-    );
-});
-
-test('presentation mode: F enters, number keys recall materials, Esc leaves', async ({ page }) => {
-  const widget = await openWidget(page);
-  await control(widget, 'eta').focus();
-  await widget.locator('input[type="range"]').first().focus();
-  await page.keyboard.press('f');
-  const shell = widget.locator('.sb-widget');
-  await expect(shell).toHaveClass(/is-presenting/);
-  await expect(widget.locator('.sb-dp-profile')).toBeInViewport();
-  await page.keyboard.press('2');
-  await expect(widget.locator('.sb-preset-toast')).toHaveText('2 · Marble');
-  await expect(control(widget, 'material')).toHaveValue('marble');
-  await expect(control(widget, 'eta')).toHaveValue('1.5');
-  // physics.md §6.1, Marble R: 0.830191.
-  await expect
-    .poll(async () => parseDisplayed(await readout(widget, 'total-dipole-r')), { timeout: 30_000 })
-    .toBeCloseTo(0.8302, 4);
-  await page.keyboard.press('Escape');
-  await expect(shell).not.toHaveClass(/is-presenting/);
 });
 
 test('?backend=cpu: the float64 twins draw the same numbers and say so', async ({ page }) => {

@@ -59,22 +59,7 @@ function sourceQuizCount(): number {
     );
 }
 
-test('before an answer the page holds no marker of the right option and no explanation', async ({
-  page,
-}) => {
-  await page.goto(PATH);
-  await expect(page.locator('form.quiz')).toHaveCount(2);
-  await expect(page.locator('[data-correct]')).toHaveCount(0);
-  const html = await page.content();
-  for (const option of [...slab!.wrong, ...milk!.wrong])
-    expect(html).not.toContain(plainWords(option.why));
-  expect(html).not.toContain('By the multiplicative property');
-  // The radio group is named by its legend.
-  const group = page.locator('#quiz-2 fieldset');
-  await expect(group.locator('legend')).toContainText('twice as thick');
-});
-
-test("a wrong answer shows that option's explanation, the right one the explanation, and the answer is kept", async ({
+test('a wrong answer shows that option\'s explanation, the right one the explanation, the answer is kept, and "Show the answer" explains', async ({
   page,
 }) => {
   const errors = trackErrors(page);
@@ -104,21 +89,18 @@ test("a wrong answer shows that option's explanation, the right one the explanat
   await page.reload();
   await expect(page.locator('#quiz-2')).toHaveClass(/is-correct/);
   expect(await order(page.locator('#quiz-2'))).toEqual(before);
+
+  // Quiz 1, untouched so far: "Show the answer" after a wrong try marks the right option
+  // and explains it.
+  const first = page.locator('#quiz-1');
+  await answer(page, first, milk!.wrong[0]!.id);
+  await first.getByRole('button', { name: 'Show the answer' }).click();
+  await expect(first.locator('li.is-answer input')).toHaveValue(milk!.right.id);
+  await expect(first.locator('.quiz-feedback')).toContainText('nine orders of magnitude');
   expect(errors).toEqual([]);
 });
 
-test('"Show the answer" after a wrong try marks the right option and explains it', async ({
-  page,
-}) => {
-  await page.goto(PATH);
-  const quiz = page.locator('#quiz-1');
-  await answer(page, quiz, milk!.wrong[0]!.id);
-  await quiz.getByRole('button', { name: 'Show the answer' }).click();
-  await expect(quiz.locator('li.is-answer input')).toHaveValue(milk!.right.id);
-  await expect(quiz.locator('.quiz-feedback')).toContainText('nine orders of magnitude');
-});
-
-test('options are shuffled per load, and a deep link reproduces the order', async ({
+test('options are shuffled per load, a deep link reproduces the order, and the keyboard alone can answer', async ({
   page,
   browser,
 }) => {
@@ -148,70 +130,97 @@ test('options are shuffled per load, and a deep link reproduces the order', asyn
   expect(await order(received)).toEqual(sent);
   await expect(received).toBeInViewport();
   await context.close();
-});
 
-test('the keyboard alone can choose and check an answer', async ({ page }) => {
-  await page.goto(PATH);
-  const quiz = page.locator('#quiz-2');
-  const ids = await order(quiz);
-  await quiz.locator('input[type="radio"]').first().focus();
+  // The keyboard alone chooses and checks an answer (quiz 2 of the last load, unanswered).
+  const slabQuiz = page.locator('#quiz-2');
+  const ids = await order(slabQuiz);
+  await slabQuiz.locator('input[type="radio"]').first().focus();
   await page.keyboard.press('Space');
   await page.keyboard.press('ArrowDown');
-  await expect(quiz.locator(`input[value="${ids[1]}"]`)).toBeChecked();
+  await expect(slabQuiz.locator(`input[value="${ids[1]}"]`)).toBeChecked();
   await page.keyboard.press('Tab');
-  await expect(quiz.getByRole('button', { name: 'Check answer' })).toBeFocused();
+  await expect(slabQuiz.getByRole('button', { name: 'Check answer' })).toBeFocused();
   await page.keyboard.press('Enter');
-  await expect(quiz.locator('.quiz-feedback')).toContainText(
+  await expect(slabQuiz.locator('.quiz-feedback')).toContainText(
     ids[1] === slab!.right.id ? 'Correct' : 'Not quite',
   );
 });
 
-for (const scheme of ['light', 'dark'] as const) {
-  test(`quizzes pass axe in the ${scheme} theme, before and after answering`, async ({ page }) => {
-    // axe over KaTeX-heavy markup takes tens of seconds on a loaded two-core machine.
-    test.setTimeout(180_000);
-    await page.emulateMedia({ colorScheme: scheme });
-    await page.goto(PATH);
-    await page.evaluate(() => document.fonts.ready.then(() => undefined));
-    const check = async () =>
-      (
-        await new AxeBuilder({ page })
-          .include('form.quiz')
-          // KaTeX's aria-hidden visual copy of the MathML (see book.spec.ts's axeViolations).
-          .exclude('.katex-html')
-          .withTags(['wcag2a', 'wcag2aa'])
-          .analyze()
-      ).violations.map((v) => `${v.id}: ${v.nodes.map((n) => n.target.join(' ')).join(', ')}`);
-    expect(await check()).toEqual([]);
-    await answer(page, page.locator('#quiz-2'), slab!.wrong[0]!.id);
-    await answer(page, page.locator('#quiz-1'), milk!.right.id);
-    await expect(page.locator('#quiz-1')).toHaveClass(/is-correct/);
-    expect(await check()).toEqual([]);
-  });
-  test(`the answer key passes axe in the ${scheme} theme, with an answer open`, async ({
-    page,
-  }) => {
-    // axe over KaTeX-heavy markup takes tens of seconds on a loaded two-core machine.
-    test.setTimeout(180_000);
-    await page.emulateMedia({ colorScheme: scheme });
-    await page.goto('/appendix/answers.html');
-    await expect(page.locator('section.answer')).toHaveCount(sourceQuizCount());
-    await page.locator('section.answer summary').first().click();
-    await page.evaluate(() => document.fonts.ready.then(() => undefined));
-    // The page is long (every quiz's KaTeX); the first chapter's entries and the page
-    // frame carry every kind of element it has.
-    const results = await new AxeBuilder({ page })
-      .include('header')
-      .include('nav')
-      .include('[id="answers-chapter-1"]')
-      .include('[id^="01-"]')
-      .include('[id^="02-"]')
-      .exclude('.katex-html')
-      .withTags(['wcag2a', 'wcag2aa'])
-      .analyze();
-    expect(results.violations.map((v) => v.id)).toEqual([]);
-  });
+/**
+ * axe-core's violations inside `include` (the quizzes, or the answer key's frame and
+ * first entries), one line each. KaTeX's HTML rendering is left out (the aria-hidden
+ * visual copy of the MathML beside it; see axeViolations in support.ts). `colourOnly`:
+ * only the rules a theme can change, for the second theme (the rest of WCAG does not
+ * depend on colours and ran in the first).
+ */
+async function scopedAxe(page: Page, include: string[], colourOnly = false): Promise<string[]> {
+  await page.evaluate(() => document.fonts.ready.then(() => undefined));
+  let builder = new AxeBuilder({ page });
+  for (const selector of include) builder = builder.include(selector);
+  builder = builder.exclude('.katex-html');
+  const results = await (
+    colourOnly
+      ? builder.withRules(['color-contrast', 'link-in-text-block'])
+      : builder.withTags(['wcag2a', 'wcag2aa'])
+  ).analyze();
+  return results.violations.map(
+    (v) => `${v.id}: ${v.nodes.map((n) => n.target.join(' ')).join(', ')}`,
+  );
 }
+
+/** Switches the page's theme with its own button, as a reader does. */
+async function switchTheme(page: Page, theme: 'light' | 'dark'): Promise<void> {
+  await page.locator('.theme-toggle').click();
+  await expect(page.locator('html')).toHaveAttribute('data-theme', theme);
+}
+
+// One load of the chapter for the page before any answer and for axe in both themes,
+// before and after answering: the light theme gets the full WCAG A/AA rule set, the dark
+// theme the colour rules (the other rules do not depend on the theme).
+test('before an answer the page holds no marker of the right option and no explanation; quizzes pass axe in both themes, before and after answering', async ({
+  page,
+}) => {
+  // axe over KaTeX-heavy markup takes tens of seconds on a loaded two-core machine.
+  test.setTimeout(240_000);
+  await page.emulateMedia({ colorScheme: 'light' });
+  await page.goto(PATH);
+  await expect(page.locator('form.quiz')).toHaveCount(2);
+  await expect(page.locator('[data-correct]')).toHaveCount(0);
+  const html = await page.content();
+  for (const option of [...slab!.wrong, ...milk!.wrong])
+    expect(html).not.toContain(plainWords(option.why));
+  expect(html).not.toContain('By the multiplicative property');
+  // The radio group is named by its legend.
+  const group = page.locator('#quiz-2 fieldset');
+  await expect(group.locator('legend')).toContainText('twice as thick');
+
+  const quizzes = ['form.quiz'];
+  expect(await scopedAxe(page, quizzes), 'light theme, before answering').toEqual([]);
+  await switchTheme(page, 'dark');
+  expect(await scopedAxe(page, quizzes, true), 'dark theme, before answering').toEqual([]);
+  await answer(page, page.locator('#quiz-2'), slab!.wrong[0]!.id);
+  await answer(page, page.locator('#quiz-1'), milk!.right.id);
+  await expect(page.locator('#quiz-2')).toHaveClass(/is-wrong/);
+  await expect(page.locator('#quiz-1')).toHaveClass(/is-correct/);
+  expect(await scopedAxe(page, quizzes, true), 'dark theme, after answering').toEqual([]);
+  await switchTheme(page, 'light');
+  expect(await scopedAxe(page, quizzes), 'light theme, after answering').toEqual([]);
+});
+
+test('the answer key passes axe in both themes, with an answer open', async ({ page }) => {
+  // axe over KaTeX-heavy markup takes tens of seconds on a loaded two-core machine.
+  test.setTimeout(180_000);
+  await page.emulateMedia({ colorScheme: 'light' });
+  await page.goto('/appendix/answers.html');
+  await expect(page.locator('section.answer')).toHaveCount(sourceQuizCount());
+  await page.locator('section.answer summary').first().click();
+  // The page is long (every quiz's KaTeX); the first chapter's entries and the page
+  // frame carry every kind of element it has.
+  const scope = ['header', 'nav', '[id="answers-chapter-1"]', '[id^="01-"]', '[id^="02-"]'];
+  expect(await scopedAxe(page, scope), 'light theme').toEqual([]);
+  await switchTheme(page, 'dark');
+  expect(await scopedAxe(page, scope, true), 'dark theme').toEqual([]);
+});
 
 test.describe('without JavaScript', () => {
   test.use({ javaScriptEnabled: false });

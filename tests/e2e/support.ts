@@ -1,6 +1,7 @@
 // Shared helpers of the end-to-end tests.
 import { readdirSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
+import AxeBuilder from '@axe-core/playwright';
 import { expect, type Locator, type Page } from '@playwright/test';
 import { PNG } from 'pngjs';
 import { WIDGET_CATALOG } from '../../src/widgets/catalog.ts';
@@ -167,4 +168,34 @@ export function displayedDigits(text: string): number {
   const match = /(-?[\d.]+)/.exec(text);
   const digits = (match?.[1] ?? '').replace('-', '').replace('.', '').replace(/^0+/, '');
   return Math.max(digits.length, 1);
+}
+
+/**
+ * axe-core's WCAG 2.1 A/AA violations on the page as it is now, one line each. KaTeX's
+ * HTML rendering (`.katex-html`) is left out: it is the aria-hidden visual copy of the
+ * MathML beside it, which axe does check, and it has no colour of its own (the book sets
+ * none; it inherits the prose's, which is checked). It is removed from the page, not
+ * only excluded: axe builds its tree over the whole document, and on a math-heavy page
+ * these spans are most of the nodes (30,000 of 46,000 in the appendix), which halves
+ * axe's time. Call it after every other check of the page.
+ *
+ * `colourOnly`: the rules a theme can change (contrast, links told apart by colour), for
+ * the second theme; the rest of WCAG does not depend on colours and ran in the first.
+ */
+export async function axeViolations(page: Page, colourOnly = false): Promise<string[]> {
+  // Layout is final once the math fonts have loaded.
+  await page.evaluate(() => document.fonts.ready.then(() => undefined));
+  await page.evaluate(() => {
+    for (const copy of document.querySelectorAll('.katex-html')) copy.remove();
+  });
+  const builder = new AxeBuilder({ page });
+  const results = await (
+    colourOnly
+      ? builder.withRules(['color-contrast', 'link-in-text-block'])
+      : builder.withTags(['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa'])
+  ).analyze();
+  return results.violations.map(
+    (violation) =>
+      `${violation.id}: ${violation.nodes.map((node) => node.target.join(' ')).join(', ')}`,
+  );
 }
