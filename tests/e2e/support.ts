@@ -1,7 +1,7 @@
 // Shared helpers of the end-to-end tests.
+import AxeBuilder from '@axe-core/playwright';
 import { readdirSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import AxeBuilder from '@axe-core/playwright';
 import { expect, type Locator, type Page } from '@playwright/test';
 import { PNG } from 'pngjs';
 import { WIDGET_CATALOG } from '../../src/widgets/catalog.ts';
@@ -198,4 +198,56 @@ export async function axeViolations(page: Page, colourOnly = false): Promise<str
     (violation) =>
       `${violation.id}: ${violation.nodes.map((node) => node.target.join(' ')).join(', ')}`,
   );
+}
+
+/**
+ * axe-core violations inside one widget (`include`, a CSS selector), as `rule: targets`.
+ * The first theme gets the full rule set (`tags`: only those tag sets, e.g. WCAG 2.1 AA;
+ * none: every rule axe runs by default); the second theme needs only the colour rules
+ * (`colourOnly`), since names, roles and labels do not change with the theme: the same
+ * split as book.spec.ts's page checks.
+ */
+export async function widgetAxeViolations(
+  page: Page,
+  include: string,
+  { colourOnly = false, tags }: { colourOnly?: boolean; tags?: string[] } = {},
+): Promise<string[]> {
+  const builder = new AxeBuilder({ page }).include(include);
+  if (colourOnly) builder.withRules(['color-contrast', 'link-in-text-block']);
+  else if (tags) builder.withTags(tags);
+  const results = await builder.analyze();
+  return results.violations.map(
+    (violation) =>
+      `${violation.id}: ${violation.help} (${violation.nodes.map((node) => node.target.join(' ')).join(', ')})`,
+  );
+}
+
+/**
+ * Switches the page to the other theme with its own button (as a reader does, without a
+ * reload: the tokens follow html[data-theme]) and waits until it applies.
+ */
+export async function toggleTheme(page: Page, to: 'light' | 'dark'): Promise<void> {
+  await page.locator('.theme-toggle').click();
+  await expect(page.locator('html')).toHaveAttribute('data-theme', to);
+}
+
+/**
+ * Opens `chapter` like widgetOpener, but waits for the widget's first picture only
+ * (waitForPicture): for checks of controls, notices, the cost line and readouts that
+ * every refinement stage shows, without paying for full refinement on a software GPU.
+ */
+export function widgetPictureOpener(
+  chapter: string,
+  tag: string,
+  id: string,
+): (page: Page, state?: Record<string, string>, query?: string) => Promise<Locator> {
+  return async (page, state = {}, query = '') => {
+    const hash = Object.entries(state)
+      .map(([k, v]) => `${id}.${k}=${v}`)
+      .join('&');
+    await page.goto(`${chapter}${query}${hash ? `#${hash}` : ''}`);
+    const widget = page.locator(tag).first();
+    await waitForPicture(widget);
+    return widget;
+  };
 }
