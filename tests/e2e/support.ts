@@ -59,6 +59,7 @@ export function widgetOpener(
   chapter: string,
   tag: string,
   id: string,
+  waitFor: (widget: Locator) => Promise<void> = waitForRender,
 ): (page: Page, state?: Record<string, string>, query?: string) => Promise<Locator> {
   return async (page, state = {}, query = '') => {
     const hash = Object.entries(state)
@@ -66,7 +67,7 @@ export function widgetOpener(
       .join('&');
     await page.goto(`${chapter}${query}${hash ? `#${hash}` : ''}`);
     const widget = page.locator(tag).first();
-    await waitForRender(widget);
+    await waitFor(widget);
     return widget;
   };
 }
@@ -241,13 +242,5 @@ export function widgetPictureOpener(
   tag: string,
   id: string,
 ): (page: Page, state?: Record<string, string>, query?: string) => Promise<Locator> {
-  return async (page, state = {}, query = '') => {
-    const hash = Object.entries(state)
-      .map(([k, v]) => `${id}.${k}=${v}`)
-      .join('&');
-    await page.goto(`${chapter}${query}${hash ? `#${hash}` : ''}`);
-    const widget = page.locator(tag).first();
-    await waitForPicture(widget);
-    return widget;
-  };
+  return widgetOpener(chapter, tag, id, waitForPicture);
 }
