@@ -152,6 +152,106 @@ export function transmittanceResidualRatioTracking(
   return estimateOf(control * weight, lookups, capped);
 }
 
+/**
+ * P_n of the null-scattering path integral (Miller, Georgiev & Jarosz 2019) for a shadow
+ * ray: 1 − (1 − β)·σt/(|σn| + σt), σn = σ̄ − σt, β = nullBlend clamped to [0, 1]. β = 0 is
+ * delta tracking's σn/σ̄ where 0 ≤ σt ≤ σ̄ (|σn|/(|σn| + σt) above), β = 1 ratio tracking's 1.
+ * The fraction is written as in the shader (σt/σ̄, or 1/(2 − σ̄/σt) for σt > σ̄).
+ */
+export function nullScatteringProbability(
+  sigmaT: number,
+  sigmaMaj: number,
+  nullBlend: number,
+): number {
+  const beta = Math.min(Math.max(nullBlend, 0), 1);
+  let fraction = 1;
+  if (!(sigmaT > 0)) fraction = 0;
+  else if (sigmaT <= sigmaMaj) fraction = sigmaT / sigmaMaj;
+  else if (sigmaMaj > 0) fraction = 1 / (2 - sigmaMaj / sigmaT);
+  return 1 - (1 - beta) * fraction;
+}
+
+/** One vertex of a null-scattering walk, for figures: where, what, and the weight after it. */
+export interface NullScatteringVertex {
+  t: number;
+  /** The real/null number ξ of the vertex. */
+  xi: number;
+  nullProbability: number;
+  kind: 'null' | 'real';
+  /** The walk's weight after this vertex (0 after a real one). */
+  weight: number;
+}
+
+/**
+ * The walk of transmittanceNullScattering, vertex by vertex (same stream, same decisions,
+ * same clamps): the estimate is the weight after the last vertex, or 1 without vertices.
+ */
+export function nullScatteringWalk(
+  medium: Medium1D,
+  d: number,
+  sigmaMaj: number,
+  nullBlend: number,
+  state: RngState,
+  maxSteps: number,
+): { vertices: NullScatteringVertex[]; result: TransmittanceEstimate } {
+  const vertices: NullScatteringVertex[] = [];
+  if (!(sigmaMaj > 0) || !(d > 0)) return { vertices, result: estimateOf(1) };
+  let weight = 1;
+  for (const position of tentativeCollisions(sigmaMaj, d, state)) {
+    if (vertices.length === maxSteps) return { vertices, result: estimateOf(weight, maxSteps, 1) };
+    const sigmaT = mediumExtinction(medium, position);
+    const probability = nullScatteringProbability(sigmaT, sigmaMaj, nullBlend);
+    const xi = rngNextFloat(state);
+    // Real vertex when ξ < 1 − P_n (delta tracking's ξ < σt/σ̄ for β = 0): the shadow path ends, 0.
+    if (xi < 1 - probability) {
+      vertices.push({ t: position, xi, nullProbability: probability, kind: 'real', weight: 0 });
+      return { vertices, result: estimateOf(0, vertices.length) };
+    }
+    // Null vertex: f/p gains σn/(σ̄·P_n), clamped like the shader's factor and product.
+    const factor = Math.min(
+      Math.max(nullCollisionWeight(sigmaT, sigmaMaj) / probability, -NULL_RATIO_LIMIT),
+      NULL_RATIO_LIMIT,
+    );
+    weight = clampWeight(weight * factor);
+    vertices.push({ t: position, xi, nullProbability: probability, kind: 'null', weight });
+    if (weight === 0) break;
+  }
+  return { vertices, result: estimateOf(weight, vertices.length) };
+}
+
+/**
+ * Null-scattering transmittance (Miller et al. 2019; shaders/tracking.wesl): the product of
+ * σn/(σ̄·P_n) over the tentative collisions if all are taken as null vertices, else 0.
+ * Unbiased for every P_n > 0 where σn ≠ 0; see nullScatteringSecondMoment for its variance.
+ */
+export function transmittanceNullScattering(
+  medium: Medium1D,
+  d: number,
+  sigmaMaj: number,
+  nullBlend: number,
+  state: RngState,
+  maxSteps: number,
+): TransmittanceEstimate {
+  return nullScatteringWalk(medium, d, sigmaMaj, nullBlend, state, maxSteps).result;
+}
+
+/**
+ * Integrand of the second moment's exponent, E[T̂²] = exp(−∫(σ̄ − σn²/(σ̄·P_n)) ds): the
+ * Campbell identity on the Poisson process of rate σ̄ with E[factor² | x] = σn²/(σ̄²·P_n).
+ * P_n = 0 with σn ≠ 0 makes the estimator biased (never null where it should be), so it is
+ * reported as NaN; P_n = 0 with σn = 0 contributes σ̄.
+ */
+export function nullScatteringSecondMomentRate(
+  sigmaT: number,
+  sigmaMaj: number,
+  nullProbability: number,
+): number {
+  const sigmaN = sigmaMaj - sigmaT;
+  if (sigmaN === 0) return sigmaMaj;
+  if (!(nullProbability > 0)) return NaN;
+  return sigmaMaj - (sigmaN * sigmaN) / (sigmaMaj * nullProbability);
+}
+
 /** w_k = P(N ≥ k) of the Kettunen et al. roulette (§4.4), without the order cap. */
 export function unbiasedRayMarchingOrderProbability(k: number): number {
   if (k <= 0) return 1;

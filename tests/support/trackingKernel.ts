@@ -10,6 +10,7 @@ import {
   transmittanceDeltaTracking,
   transmittanceRatioTracking,
   transmittanceResidualRatioTracking,
+  transmittanceNullScattering,
   transmittanceTrackLength,
   transmittanceUnbiasedRayMarching,
   type TransmittanceEstimate,
@@ -23,6 +24,7 @@ export const ESTIMATORS = [
   'residual',
   'unbiasedRayMarching',
   'trackLength',
+  'nullScattering',
 ] as const;
 export type EstimatorName = (typeof ESTIMATORS)[number];
 
@@ -37,6 +39,8 @@ export interface WalkSetup {
   sigmaControl?: number;
   /** The loop cap (TRACKING_MAX_STEPS when absent). */
   maxSteps?: number;
+  /** β of null-scattering tracking (0 when absent: delta tracking's P_n). */
+  nullBlend?: number;
 }
 
 /**
@@ -52,6 +56,7 @@ struct WalkSetup {
   sigmaMaj: f32,
   sigmaControl: f32,
   maxSteps: u32,
+  nullBlend: f32,
 }
 
 fn estimateTransmittance(setup: WalkSetup, state: ptr<function, u32>) -> package::tracking::TransmittanceEstimate {
@@ -62,6 +67,7 @@ fn estimateTransmittance(setup: WalkSetup, state: ptr<function, u32>) -> package
     case 1u: { r = package::tracking::transmittanceRatioTracking(m, setup.d, setup.sigmaMaj, state, setup.maxSteps); }
     case 2u: { r = package::tracking::transmittanceResidualRatioTracking(m, setup.d, setup.sigmaControl, setup.sigmaMaj, state, setup.maxSteps); }
     case 3u: { r = package::tracking::transmittanceUnbiasedRayMarching(m, setup.d, setup.sigmaMaj, state, setup.maxSteps); }
+    case 5u: { r = package::tracking::transmittanceNullScattering(m, setup.d, setup.sigmaMaj, setup.nullBlend, state, setup.maxSteps); }
     case 4u: { r.estimate = package::tracking::transmittanceTrackLength(m.sigma0, setup.d, package::rng::rngNextFloat(state)); }
     default: {}
   }
@@ -70,7 +76,7 @@ fn estimateTransmittance(setup: WalkSetup, state: ptr<function, u32>) -> package
 `;
 
 /** 32-bit words of a WalkSetup in a storage buffer. */
-export const WALK_SETUP_WORDS = MEDIUM_WORDS + 5;
+export const WALK_SETUP_WORDS = MEDIUM_WORDS + 6;
 
 /** Writes `setup` into `words` from word `offset` on, in the layout of WALK_WGSL's struct. */
 export function packWalkSetup(words: Uint32Array, offset: number, setup: WalkSetup): void {
@@ -82,6 +88,7 @@ export function packWalkSetup(words: Uint32Array, offset: number, setup: WalkSet
   floats[o + 1] = setup.sigmaMaj;
   floats[o + 2] = setup.sigmaControl ?? 0;
   words[o + 3] = setup.maxSteps ?? TRACKING_MAX_STEPS;
+  floats[o + 4] = setup.nullBlend ?? 0;
 }
 
 /**
@@ -94,6 +101,7 @@ export function twinWalker(setup: WalkSetup): (state: RngState) => Transmittance
   const sigmaMaj = Math.fround(setup.sigmaMaj);
   const sigmaControl = Math.fround(setup.sigmaControl ?? 0);
   const maxSteps = setup.maxSteps ?? TRACKING_MAX_STEPS;
+  const nullBlend = Math.fround(setup.nullBlend ?? 0);
   return (state) => {
     switch (setup.estimator) {
       case 'delta':
@@ -111,6 +119,8 @@ export function twinWalker(setup: WalkSetup): (state: RngState) => Transmittance
         );
       case 'unbiasedRayMarching':
         return transmittanceUnbiasedRayMarching(medium, d, sigmaMaj, state, maxSteps);
+      case 'nullScattering':
+        return transmittanceNullScattering(medium, d, sigmaMaj, nullBlend, state, maxSteps);
       case 'trackLength':
         return {
           estimate: transmittanceTrackLength(medium.sigma0, d, rngNextFloat(state)),
