@@ -43,7 +43,11 @@ describeShaderFunction({
     reason: 'one or two divisions (2.5 ULP each), one product and one subtraction from 1',
   },
   cases: [
-    { name: 'β = 0, σt = 0.5, σ̄ = 2: delta tracking’s σn/σ̄ = 0.75', args: [0.5, 2, 0], expected: 0.75 },
+    {
+      name: 'β = 0, σt = 0.5, σ̄ = 2: delta tracking’s σn/σ̄ = 0.75',
+      args: [0.5, 2, 0],
+      expected: 0.75,
+    },
     { name: 'β = 1: ratio tracking’s P_n = 1 exactly', args: [0.5, 2, 1], expected: 1 },
     { name: 'β = 0.5 halfway: 1 − 0.5·0.25 = 0.875', args: [0.5, 2, 0.5], expected: 0.875 },
     { name: 'σt = 0: P_n = 1 exactly for every β', args: [0, 2, 0], expected: 1 },

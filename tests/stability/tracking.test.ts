@@ -368,46 +368,42 @@ const NAMED: NamedCase[] = [
   },
   // Null-scattering tracking (Miller et al. 2019) at β = 0 (delta tracking's P_n), 0.5 and 1
   // (ratio tracking's P_n = 1).
-  ...[0, 0.5, 1].map(
-    (nullBlend): NamedCase => ({
-      name: `null scattering, β = ${nullBlend}: σt ≡ 0 gives P_n = 1 and factor 1, so exactly 1, after E[lookups] = σ̄d = 3`,
-      input: {
-        estimator: 'nullScattering',
-        medium: empty,
-        d: 1.5,
-        sigmaMaj: 2,
-        nullBlend,
-        frame: 23,
-        walks: WALKS,
-      },
-      check: (o) => {
-        expect(o.min).toBe(1);
-        expect(o.max).toBe(1);
-        expect(o.capped).toBe(0);
-        expect(Math.abs(o.lookups / WALKS - 3)).toBeLessThan(5 * Math.sqrt(3 / WALKS));
-      },
-    }),
-  ),
-  ...[0, 0.5, 1].map(
-    (nullBlend): NamedCase => ({
-      name: `null scattering, β = ${nullBlend}: σ̄ = 0 gives T = 1 with no lookup and no random number`,
-      input: {
-        estimator: 'nullScattering',
-        medium: empty,
-        d: 5,
-        sigmaMaj: 0,
-        nullBlend,
-        frame: 24,
-        walks: 64,
-      },
-      check: (o) => {
-        expect(o.min).toBe(1);
-        expect(o.max).toBe(1);
-        expect(o.lookups).toBe(0);
-        expect(o.state, 'stream untouched').toBe(rngSeed(63, 24));
-      },
-    }),
-  ),
+  ...[0, 0.5, 1].map((nullBlend): NamedCase => ({
+    name: `null scattering, β = ${nullBlend}: σt ≡ 0 gives P_n = 1 and factor 1, so exactly 1, after E[lookups] = σ̄d = 3`,
+    input: {
+      estimator: 'nullScattering',
+      medium: empty,
+      d: 1.5,
+      sigmaMaj: 2,
+      nullBlend,
+      frame: 23,
+      walks: WALKS,
+    },
+    check: (o) => {
+      expect(o.min).toBe(1);
+      expect(o.max).toBe(1);
+      expect(o.capped).toBe(0);
+      expect(Math.abs(o.lookups / WALKS - 3)).toBeLessThan(5 * Math.sqrt(3 / WALKS));
+    },
+  })),
+  ...[0, 0.5, 1].map((nullBlend): NamedCase => ({
+    name: `null scattering, β = ${nullBlend}: σ̄ = 0 gives T = 1 with no lookup and no random number`,
+    input: {
+      estimator: 'nullScattering',
+      medium: empty,
+      d: 5,
+      sigmaMaj: 0,
+      nullBlend,
+      frame: 24,
+      walks: 64,
+    },
+    check: (o) => {
+      expect(o.min).toBe(1);
+      expect(o.max).toBe(1);
+      expect(o.lookups).toBe(0);
+      expect(o.state, 'stream untouched').toBe(rngSeed(63, 24));
+    },
+  })),
   ...(
     [
       // β, P_n = 1 − (1 − β)·σt/(|σn| + σt) with σt = 2, σ̄ = 1, and E[T̂²] = exp(σn²/(σ̄P_n) − σ̄).
@@ -415,48 +411,44 @@ const NAMED: NamedCase[] = [
       [0.5, 2 / 3],
       [1, 1],
     ] as const
-  ).map(
-    ([nullBlend, pn]): NamedCase => ({
-      name: `null scattering, β = ${nullBlend}: σt = 2 > σ̄ = 1 (σn = −1) stays unbiased for 0.135335 with factors −1/P_n = ${(-1 / pn).toFixed(2)}`,
-      input: {
-        estimator: 'nullScattering',
-        medium: dense,
-        d: 1,
-        sigmaMaj: 1,
-        nullBlend,
-        frame: 25,
-        walks: 4 * WALKS,
-      },
-      check: (o) => {
-        const T = Math.exp(-2);
-        expectMean(o, 4 * WALKS, T, Math.exp(1 / pn - 1) - T * T);
-        // Weights are (−1/P_n)^k over k null vertices: negative for odd k, 1 for none.
-        expect(o.min).toBeLessThanOrEqual(-1 / pn + 1e-5);
-        expect(o.max).toBeGreaterThanOrEqual(1);
-      },
-    }),
-  ),
-  ...[0, 0.5].map(
-    (nullBlend): NamedCase => ({
-      name: `null scattering, β = ${nullBlend}: σt = σ̄ = 1e6 has P_n = 1 − (1 − β), so β = 0 ends at the first collision with 0`,
-      input: {
-        estimator: 'nullScattering',
-        medium: homogeneousMedium(1e6),
-        d: 1,
-        sigmaMaj: 1e6,
-        nullBlend,
-        frame: 26,
-        walks: 1000,
-      },
-      check: (o) => {
-        expect(o.min).toBe(0);
-        expect(o.max).toBe(0);
-        // β = 0: every collision is real; β = 0.5: a null vertex has factor σn/(σ̄P_n) = 0.
-        expect(o.lookups).toBe(1000);
-        expect(o.maxLookups).toBe(1);
-      },
-    }),
-  ),
+  ).map(([nullBlend, pn]): NamedCase => ({
+    name: `null scattering, β = ${nullBlend}: σt = 2 > σ̄ = 1 (σn = −1) stays unbiased for 0.135335 with factors −1/P_n = ${(-1 / pn).toFixed(2)}`,
+    input: {
+      estimator: 'nullScattering',
+      medium: dense,
+      d: 1,
+      sigmaMaj: 1,
+      nullBlend,
+      frame: 25,
+      walks: 4 * WALKS,
+    },
+    check: (o) => {
+      const T = Math.exp(-2);
+      expectMean(o, 4 * WALKS, T, Math.exp(1 / pn - 1) - T * T);
+      // Weights are (−1/P_n)^k over k null vertices: negative for odd k, 1 for none.
+      expect(o.min).toBeLessThanOrEqual(-1 / pn + 1e-5);
+      expect(o.max).toBeGreaterThanOrEqual(1);
+    },
+  })),
+  ...[0, 0.5].map((nullBlend): NamedCase => ({
+    name: `null scattering, β = ${nullBlend}: σt = σ̄ = 1e6 has P_n = 1 − (1 − β), so β = 0 ends at the first collision with 0`,
+    input: {
+      estimator: 'nullScattering',
+      medium: homogeneousMedium(1e6),
+      d: 1,
+      sigmaMaj: 1e6,
+      nullBlend,
+      frame: 26,
+      walks: 1000,
+    },
+    check: (o) => {
+      expect(o.min).toBe(0);
+      expect(o.max).toBe(0);
+      // β = 0: every collision is real; β = 0.5: a null vertex has factor σn/(σ̄P_n) = 0.
+      expect(o.lookups).toBe(1000);
+      expect(o.maxLookups).toBe(1);
+    },
+  })),
   {
     name: 'null scattering: the loop cap, σt ≡ 0 with 100 expected lookups and maxSteps = 3, stops at 3 with capped = 1',
     input: {
