@@ -15,8 +15,16 @@ import { FIGURES } from '../../src/book/figures/index.ts';
 import { renderSvg } from '../../src/book/figures/svg.ts';
 import { DIPOLE_FIGURE, dipoleFigure } from '../../src/book/figures/dipole.ts';
 import { chooseWalk, NULL_COLLISIONS } from '../../src/book/figures/null-collisions.ts';
+import {
+  chooseNullScatteringWalks,
+  NULL_SCATTERING_PATHS,
+  nullScatteringPaths,
+} from '../../src/book/figures/null-scattering-paths.ts';
 import { sineMedium } from '../../src/reference/medium.ts';
-import { transmittanceDeltaTracking } from '../../src/reference/tracking.ts';
+import {
+  transmittanceDeltaTracking,
+  transmittanceNullScattering,
+} from '../../src/reference/tracking.ts';
 
 const ROOT = fileURLToPath(new URL('../..', import.meta.url));
 const book = buildBook(ROOT);
@@ -305,5 +313,38 @@ describe('the geometry the figures claim', () => {
     );
     expect(estimate.estimate).toBe(0);
     expect(estimate.lookups).toBe(firstReal + 1);
+  });
+
+  it('the null-scattering walks are the estimator’s walks, and delta/ratio tracking’s, on the same stream', () => {
+    const p = NULL_SCATTERING_PATHS;
+    const { seed, walks } = chooseNullScatteringWalks(p);
+    const medium = sineMedium(p.sigma0, p.amplitude, p.frequency);
+    const description = nullScatteringPaths().description;
+    walks.forEach((walk) => {
+      const direct = transmittanceNullScattering(
+        medium,
+        p.length,
+        p.majorant,
+        walk.nullBlend,
+        { value: seed },
+        1000,
+      );
+      expect(direct.estimate).toBe(walk.estimate);
+      expect(direct.lookups).toBe(walk.vertices.length);
+      // Every walk sees the same collisions (ξ is drawn at each, whatever P_n).
+      walk.vertices.forEach((v, i) => expect(v.t).toBe(walks[2]?.vertices[i]?.t));
+      expect(description).toContain(
+        `estimate ${walk.estimate === 0 ? 0 : walk.estimate.toFixed(2)}`,
+      );
+    });
+    // β = 0 is delta tracking on this stream, β = 1 ratio tracking's product ∏(1 − σt/σ̄).
+    const delta = transmittanceDeltaTracking(medium, p.length, p.majorant, { value: seed }, 1000);
+    expect(delta.estimate).toBe(walks[0]?.estimate);
+    expect(delta.lookups).toBe(walks[0]?.vertices.length);
+    const ratioProduct = (walks[2]?.vertices ?? []).reduce(
+      (w, v) => w * (1 - ((1 + p.amplitude * Math.sin(p.frequency * v.t)) * p.sigma0) / p.majorant),
+      1,
+    );
+    expect(walks[2]?.estimate).toBeCloseTo(ratioProduct, 12);
   });
 });

@@ -175,3 +175,27 @@ describe('null-scattering transmittance (twin) against closed forms', () => {
     expect(nullScatteringSecondMomentRate(2, 2, 0)).toBe(2);
   });
 });
+
+describe('the numbers chapter 12 quotes (sinusoid of chapter 6, σ̄ = 1.5, d = 2)', () => {
+  /** E[lookups] = σ̄∫₀^d exp(−(1 − β)τ(s)) ds: real vertices thin the collisions at rate (1 − β)σt. */
+  const lookups = (beta: number): number =>
+    simpson((s) => 1.5 * Math.exp(-(1 - beta) * mediumOpticalDepthOf(s)), 0, 2, 2000);
+  const mediumOpticalDepthOf = (s: number): number =>
+    simpson((u) => mediumExtinction(SINE, u), 0, s, 200);
+  const variance = (beta: number): number => secondMoment(SINE, 2, 1.5, beta) - SINE_T ** 2;
+
+  it('variances 0.1164, 0.0892, 0.0771, 0.0643 and lookups 1.122, 1.383, 1.748, 3.000 for β = 0, 0.25, 0.5, 1', () => {
+    const betas = [0, 0.25, 0.5, 1];
+    expect(betas.map((b) => variance(b).toFixed(4))).toEqual(['0.1164', '0.0892', '0.0771', '0.0643']);
+    expect(betas.map((b) => lookups(b).toFixed(3))).toEqual(['1.122', '1.383', '1.748', '3.000']);
+    // The twin spends what the formula says (β = 0.25: 5σ of Poisson-like counts).
+    const { lookups: measured } = estimates(SINE, 2, 1.5, 0.25, 450);
+    expectMean(measured, lookups(0.25));
+  });
+
+  it('variance × lookups is lowest at β = 0.25 among 0, 0.25, …, 1: 0.123 against 0.131 (delta) and 0.193 (ratio)', () => {
+    const products = [0, 0.25, 0.5, 0.75, 1].map((b) => variance(b) * lookups(b));
+    expect(products.indexOf(Math.min(...products))).toBe(1);
+    expect(products.map((x) => x.toFixed(3))).toEqual(['0.131', '0.123', '0.135', '0.157', '0.193']);
+  });
+});

@@ -6,6 +6,7 @@ import { beerSlab } from './beer-slab.ts';
 import { bssrdfFigure } from './bssrdf.ts';
 import { dipoleFigure } from './dipole.ts';
 import { nullCollisions } from './null-collisions.ts';
+import { nullScatteringPaths } from './null-scattering-paths.ts';
 import { rteVolume } from './rte-volume.ts';
 import { singleScatterLoops } from './single-scatter-loops.ts';
 
@@ -16,4 +17,5 @@ export const FIGURES: Readonly<Record<string, () => Diagram>> = {
   'single-scatter-loops': () => singleScatterLoops(),
   bssrdf: () => bssrdfFigure(),
   dipole: () => dipoleFigure(),
+  'null-scattering-paths': () => nullScatteringPaths(),
 };

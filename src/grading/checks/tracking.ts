@@ -35,8 +35,11 @@ import type { CheckRuntime } from './runtime.ts';
 export const LOOKUP_COUNTER = 'sbg_lookups';
 export const DRAW_COUNTER = 'sbg_draws';
 
-/** Arguments of deltaTracking: σ0, a, d, σ̄ (f32 values). */
-export type TrackingArgs = readonly [number, number, number, number];
+/**
+ * Arguments of the estimator: σ0, a, d, σ̄ (f32 values), then any of its own (the null-
+ * scattering exercise passes P_n as the fifth).
+ */
+export type TrackingArgs = readonly [number, number, number, number, ...number[]];
 
 /** A family of media behind extinction(sigma0, amplitude, s). */
 export interface MediumFamily {
@@ -69,9 +72,17 @@ export interface TrackingCheck {
   cases: (seed: number) => readonly TrackingCase[];
   /** Calls per case. */
   n: number;
-  tests: { mean?: boolean; binary?: boolean; work?: boolean };
+  tests: { mean?: boolean; binary?: boolean; work?: boolean; secondMoment?: boolean };
   /** Probability that a correct delta tracker fails this check (split over its z-tests). */
   alpha: number;
+  /**
+   * Exact E[X²] and E[X⁴] of an estimator that is not binary (null scattering: Miller et
+   * al. 2019), in float64 for a case. When given, the mean test uses Var = E[X²] − T² and
+   * the secondMoment test z-tests Σ X² against n·E[X²] with variance n(E[X⁴] − E[X²]²).
+   */
+  moments?: (family: MediumFamily, c: TrackingCase) => { second: number; fourth: number };
+  /** The estimator's name in messages (default "delta tracking"). */
+  estimator?: string;
 }
 
 /** The helpers (extinction and rngNextFloat, both counting) for a family of media. */
@@ -105,6 +116,9 @@ export function trackingHelpers(family: MediumFamily): Helpers {
 /** Exact (float64) moments of one case's estimate and lookup count. */
 export interface TrackingExpectation {
   transmittance: number;
+  /** E[X²] and E[X⁴] when the estimator is not binary (see TrackingCheck.moments). */
+  second?: number;
+  fourth?: number;
   /** Two accepted lookup conventions: canonical L, and L + X (a lookup at the exit step too). */
   lookups: readonly { mean: number; variance: number }[];
 }
@@ -167,6 +181,7 @@ export interface TrackingEvaluation {
   pass: boolean;
   mean?: { z: number; critical: number; pass: boolean; observed: number; expected: number };
   binary?: { nonBinary: number; pass: boolean };
+  secondMoment?: { z: number; critical: number; pass: boolean; observed: number; expected: number };
   work?: {
     pass: boolean;
     badDraws: number;
@@ -192,7 +207,7 @@ export function evaluateTracking(
   expectations: readonly TrackingExpectation[],
   outputs: readonly CaseOutput[],
 ): TrackingEvaluation {
-  const zTests = (tests.mean ? 2 : 0) + (tests.work ? 2 : 0);
+  const zTests = (tests.mean ? 2 : 0) + (tests.work ? 2 : 0) + (tests.secondMoment ? 2 : 0);
   const share = zTests > 0 ? alpha / zTests : alpha;
   const result: TrackingEvaluation = { pass: true };
   if (tests.mean) {
@@ -203,15 +218,37 @@ export function evaluateTracking(
     let variance = 0;
     let count = 0;
     outputs.forEach((out, k) => {
-      const T = expectations[k]?.transmittance ?? NaN;
+      const e = expectations[k];
+      const T = e?.transmittance ?? NaN;
       for (let i = 0; i < out.values.length; i++) sum += out.values[i] ?? NaN;
       expected += out.values.length * T;
-      variance += out.values.length * T * (1 - T);
+      variance += out.values.length * (e?.second !== undefined ? e.second - T * T : T * (1 - T));
       count += out.values.length;
     });
     const z = pooledZ(sum, expected, variance);
     const pass = Number.isFinite(sum) && Math.abs(z) <= critical;
     result.mean = { z, critical, pass, observed: sum / count, expected: expected / count };
+    result.pass &&= pass;
+  }
+  if (tests.secondMoment) {
+    // Σ X² against Σ n E[X²], variance Σ n (E[X⁴] − E[X²]²): exact moments, normal z.
+    const critical = normalCritical(2 * share);
+    let sum = 0;
+    let expected = 0;
+    let variance = 0;
+    let count = 0;
+    outputs.forEach((out, k) => {
+      const e = expectations[k];
+      const second = e?.second ?? NaN;
+      const fourth = e?.fourth ?? NaN;
+      for (let i = 0; i < out.values.length; i++) sum += (out.values[i] ?? NaN) ** 2;
+      expected += out.values.length * second;
+      variance += out.values.length * (fourth - second * second);
+      count += out.values.length;
+    });
+    const z = pooledZ(sum, expected, variance);
+    const pass = Number.isFinite(sum) && Math.abs(z) <= critical;
+    result.secondMoment = { z, critical, pass, observed: sum / count, expected: expected / count };
     result.pass &&= pass;
   }
   if (tests.binary) {
@@ -319,7 +356,8 @@ export function meanTestPower(
 
 /** The z-tests' share of α for the mean test of a check (see evaluateTracking). */
 export function meanTestAlpha(check: TrackingCheck): number {
-  const zTests = (check.tests.mean ? 2 : 0) + (check.tests.work ? 2 : 0);
+  const zTests =
+    (check.tests.mean ? 2 : 0) + (check.tests.work ? 2 : 0) + (check.tests.secondMoment ? 2 : 0);
   return zTests > 0 ? (2 * check.alpha) / zTests : check.alpha;
 }
 
@@ -367,7 +405,13 @@ export async function runTrackingCheck(
     lookups: lookups.slice(k * check.n, (k + 1) * check.n),
     draws: draws.slice(k * check.n, (k + 1) * check.n),
   }));
-  const expectations = cases.map((c) => trackingExpectation(check.family, c));
+  const expectations = cases.map((c): TrackingExpectation => {
+    const e = trackingExpectation(check.family, c);
+    if (!check.moments) return e;
+    const { second, fourth } = check.moments(check.family, c);
+    return { ...e, second, fourth };
+  });
+  const estimator = check.estimator ?? 'delta tracking';
   const e = evaluateTracking(check.tests, check.alpha, expectations, outputs);
   const where =
     visibility === 'public' && cases.length === 1 && cases[0]
@@ -378,6 +422,12 @@ export async function runTrackingCheck(
     parts.push(
       `mean ${runtime.formatNumber(e.mean.observed)} against exp(−τ) averaging ` +
         `${runtime.formatNumber(e.mean.expected)}, z = ${e.mean.z.toFixed(2)} (pass when |z| ≤ ${e.mean.critical.toFixed(2)})`,
+    );
+  if (e.secondMoment)
+    parts.push(
+      `mean square ${runtime.formatNumber(e.secondMoment.observed)} against ` +
+        `${runtime.formatNumber(e.secondMoment.expected)} for ${estimator}, z = ${e.secondMoment.z.toFixed(2)} ` +
+        `(pass when |z| ≤ ${e.secondMoment.critical.toFixed(2)})`,
     );
   if (e.binary && e.binary.nonBinary > 0)
     parts.push(`${e.binary.nonBinary} estimates were neither 0 nor 1`);
@@ -394,11 +444,13 @@ export async function runTrackingCheck(
   const summary = `${where}: ${parts.join('; ')}.`;
   const failing: string[] = [];
   if (e.mean && !e.mean.pass) failing.push('its average is not exp(−τ)');
+  if (e.secondMoment && !e.secondMoment.pass)
+    failing.push(`its mean square (so its variance) is not that of ${estimator}`);
   if (e.binary && !e.binary.pass) failing.push('it does not return only 0 or 1');
   if (e.work && !e.work.pass)
     failing.push('it does not look up σt and draw random numbers as delta tracking does');
   const message = e.pass
-    ? `Consistent with delta tracking: ${summary}`
+    ? `Consistent with ${estimator}: ${summary}`
     : `${check.message} Here ${failing.join(', and ')}: ${summary}`;
   return {
     name: check.name,
