@@ -3,9 +3,10 @@
 // whose centre and width the harness passes as inputs the student's function never sees,
 // and every case (medium, majorant, P_n) is drawn from the grading seed. Each check runs the
 // mean and mean-square z-tests with the estimator's exact moments (exercise.ts). P_n stays
-// ≥ 0.6 and σ̄d ≤ 2.5 so that E[X⁴] stays within a few times E[X²]² (the normal
-// approximation of the mean-square test needs a moderate fourth moment); the design table
-// is checked in tests/grading/nullScattering.test.ts.
+// in [0.55, 0.9] and T ≥ 0.4 so that E[X⁴] stays within a few times E[X²]² (the normal
+// approximation of the mean-square test needs a moderate fourth moment), and P_n keeps its
+// distance from delta and ratio tracking's (deltaLikeProbability) so that both fail with
+// certainty; tests/grading/nullScattering.test.ts checks the design over many seeds.
 import type { CheckSpec } from '../../src/grading/exercise.ts';
 import { caseSampler, type CaseSampler } from '../../src/grading/checks/generated.ts';
 import type {
@@ -24,9 +25,28 @@ function bumpDepth(a: number, c: number, w: number, s: number): number {
 }
 
 /**
+ * P_n that delta tracking's variance would match: delta tracking has E[X²] = T, the estimator
+ * exp(−∫(σ̄ − σn²/(σ̄P_n))), equal at P* = ∫σn²/(σ̄∫|σn|) (|σn| keeps it positive when σ̄
+ * is low). The cases draw P_n a fraction u ∈ [0.35, 0.7] of the way from P* to ratio
+ * tracking's 1, so that neither tracker has the estimator's variance, whatever the medium.
+ */
+function deltaLikeProbability(sigma: (s: number) => number, majorant: number, d: number): number {
+  const steps = 512;
+  let squares = 0;
+  let magnitudes = 0;
+  for (let i = 0; i < steps; i++) {
+    const sigmaN = majorant - sigma(((i + 0.5) * d) / steps);
+    squares += sigmaN * sigmaN;
+    magnitudes += Math.abs(sigmaN);
+  }
+  return magnitudes > 0 ? Math.min(squares / (majorant * magnitudes), 1) : 1;
+}
+
+/**
  * A seeded bump medium with T near `target` ∈ [tLow, tHigh]: d log-uniform in [0.4, 3],
- * a ∈ [0.3, 0.9], c ∈ [0, d], w ∈ [0.1d, 0.6d], σ̄ = max σt·(ratio ∈ [rLow, rHigh]) with
- * σ̄d ≤ 2.5, and P_n ∈ [pLow, pHigh]. All values f32.
+ * a ∈ [0.3, 0.9], c ∈ [0, d], w ∈ [0.1d, 0.6d], σ̄ = max σt·(ratio ∈ [rLow, rHigh]), and
+ * P_n between delta tracking's P* and 1 (deltaLikeProbability), kept in [0.55, pMax].
+ * All values f32.
  */
 function bumpCase(
   r: CaseSampler,
@@ -34,8 +54,7 @@ function bumpCase(
   tHigh: number,
   ratioLow: number,
   ratioHigh: number,
-  pLow: number,
-  pHigh: number,
+  pMax: number,
 ): TrackingCase {
   const d = r.logUniform(0.4, 3);
   const a = r.uniform(0.3, 0.9);
@@ -43,18 +62,20 @@ function bumpCase(
   const w = r.uniform(0.1 * d, 0.6 * d);
   const target = r.uniform(tLow, tHigh);
   const sigma0 = f(-Math.log(target) / bumpDepth(a, c, w, d));
-  const majorant = f(Math.min(sigma0 * (1 + a) * r.uniform(ratioLow, ratioHigh), 2.5 / d));
-  const nullProbability = r.uniform(pLow, pHigh);
-  return {
-    args: [sigma0, a, d, majorant, nullProbability] as TrackingArgs,
-    params: [c, w],
-  };
+  const majorant = f(sigma0 * (1 + a) * r.uniform(ratioLow, ratioHigh));
+  const args: TrackingArgs = [sigma0, a, d, majorant];
+  const star = deltaLikeProbability((s) => BUMP_MEDIUM.sigma(args, [c, w], s), majorant, d);
+  const nullProbability = f(
+    Math.min(Math.max(star + (1 - star) * r.uniform(0.35, 0.7), 0.55), pMax),
+  );
+  return { args: [sigma0, a, d, majorant, nullProbability], params: [c, w] };
 }
 
 export const HIDDEN_DESIGN = {
   validMedia: 4,
-  lowMedia: 2,
+  lowMedia: 3,
   calls: 32768,
+  lowCalls: 65536,
   noMediumCalls: 16384,
   alpha: 1e-6,
 } as const;
@@ -62,15 +83,15 @@ export const HIDDEN_DESIGN = {
 function validMedia(seed: number): TrackingCase[] {
   const r = caseSampler(seed, 'null-scattering valid majorant');
   return Array.from({ length: HIDDEN_DESIGN.validMedia }, () =>
-    bumpCase(r, 0.3, 0.6, 1.05, 1.5, 0.6, 0.95),
+    bumpCase(r, 0.4, 0.7, 1.05, 1.5, 0.9),
   );
 }
 
-/** σ̄ at 0.6–0.8 of max σt: σn < 0 around the bump's peak. */
+/** σ̄ at 0.5–0.75 of max σt: σn < 0 around the bump's peak; P_n ≤ 0.75, far from ratio tracking. */
 function lowMedia(seed: number): TrackingCase[] {
   const r = caseSampler(seed, 'null-scattering low majorant');
   return Array.from({ length: HIDDEN_DESIGN.lowMedia }, () =>
-    bumpCase(r, 0.3, 0.6, 0.6, 0.8, 0.7, 0.95),
+    bumpCase(r, 0.4, 0.7, 0.5, 0.75, 0.75),
   );
 }
 
@@ -119,7 +140,7 @@ export const HIDDEN_CHECKS: readonly CheckSpec[] = [
       'has the wrong variance: σn = σ̄ − σt is negative there and the factor σn/(σ̄·P_n) too.',
     family: BUMP_MEDIUM,
     cases: lowMedia,
-    n: HIDDEN_DESIGN.calls,
+    n: HIDDEN_DESIGN.lowCalls,
     tests: TESTS,
     alpha: HIDDEN_DESIGN.alpha,
     moments: nullScatteringMoments,
