@@ -10,12 +10,12 @@
 // Only the iterations count towards the training time: the held-out renders between
 // checkpoints are measured and reported separately, so the curve is the model's, not
 // the benchmark's. The widget pays those renders too (view.ts's redraws).
-import { gpuCore } from '../src/gpu/core.ts';
 import { linkLibraryKernel } from '../src/gpu/link.ts';
 import { loadShaderLibrary } from '../src/gpu/shaderSourcesNode.ts';
 import { neuralParameterCount } from '../src/reference/neural.ts';
 import { InverseTrainerGpu, KERNEL } from '../src/widgets/inverse-render/gpuBackend.ts';
 import {
+  MAX_ITERATIONS,
   effectiveBatch,
   problemFrom,
   viewError,
@@ -133,7 +133,7 @@ async function trainCurve(
   let trained = 0;
   let perIteration = 0;
   for (const checkpoint of options.checkpoints.filter((c) => c <= options.seconds)) {
-    while (trained < 1000 * checkpoint && trainer.iteration < 4000) {
+    while (trained < 1000 * checkpoint && trainer.iteration < MAX_ITERATIONS) {
       // Chunks of iterations sized to end near the checkpoint (at most 32, as the widget).
       const left = 1000 * checkpoint - trained;
       const count =
@@ -170,7 +170,6 @@ export async function benchNeural(
     grid: await linkLibraryKernel(library, KERNEL),
     neural: await linkLibraryKernel(library, NEURAL_KERNEL),
   };
-  gpuCore(device);
   const grid = await trainCurve(device, codes, 'grid', options);
   const neural = await trainCurve(device, codes, 'neural', options);
   const problem = benchProblem('neural', options);
