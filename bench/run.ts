@@ -1,9 +1,10 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,peers,photons,grading,pages,interaction
+// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,peers,photons,grading,pages,interaction,neural
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
-// and --only-widgets=a,b, see bench/interaction.ts).
+// and --only-widgets=a,b, see bench/interaction.ts; `neural` takes --seconds=S and the
+// problem as --views= --batch= --steps= --rate= --table= --grid=, see bench/neural.ts).
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
@@ -11,6 +12,7 @@ import { benchCore } from './core.ts';
 import { benchEstimators } from './estimators.ts';
 import { benchGrading } from './grading.ts';
 import { benchInteraction, interactionOptionsFromArgs } from './interaction.ts';
+import { benchNeural } from './neural.ts';
 import { benchPages } from './pages.ts';
 import { benchPeers } from './peers.ts';
 import { benchPhotons } from './photons.ts';
@@ -28,6 +30,11 @@ const only = process.argv
   .split(',');
 const wanted = (name: string): boolean => !only || only.includes(name);
 const dist = process.argv.find((a) => a.startsWith('--dist='))?.slice('--dist='.length);
+/** The number given as --name=value, else the fallback. */
+const numberArg = (name: string, fallback: number): number => {
+  const value = process.argv.find((a) => a.startsWith(`--${name}=`))?.slice(name.length + 3);
+  return value === undefined ? fallback : Number(value);
+};
 
 const device = await nodeDevice();
 const tables: BenchTable[] = [];
@@ -95,6 +102,26 @@ if (wanted('photons'))
       repeats: quick ? 1 : 3,
     }),
   );
+if (wanted('neural')) {
+  // The neural field's default problem in the widget (its preset, chapter 8); quick mode
+  // trains each model for 15 s instead of 60 s.
+  const seconds = numberArg('seconds', quick ? 15 : 60);
+  tables.push(
+    ...(await benchNeural(device, {
+      seconds,
+      checkpoints: [5, 10, 15, 20, 30, 45, 60, 90, 120, 180, 240]
+        .filter((c) => c < seconds)
+        .concat(seconds),
+      views: numberArg('views', 4),
+      batch: numberArg('batch', 256),
+      steps: numberArg('steps', 16),
+      learningRate: numberArg('rate', 0.05),
+      tableLog2: numberArg('table', 12),
+      resolution: numberArg('grid', 32),
+      repeats: quick ? 3 : 5,
+    })),
+  );
+}
 for (const table of tables) printTable(table);
 const path = new URL('./results/latest.json', import.meta.url).pathname;
 saveTables(path, tables, {

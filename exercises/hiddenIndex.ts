@@ -12,6 +12,7 @@ export const HIDDEN_LOADERS: Record<string, Loader> = {
   'raymarch-exact': () => import('./raymarch-exact/hidden.ts'),
   'delta-tracking': () => import('./delta-tracking/hidden.ts'),
   'single-scatter-shadow': () => import('./single-scatter-shadow/hidden.ts'),
+  'hash-encoding': () => import('./hash-encoding/hidden.ts'),
   'dipole-rd': () => import('./dipole-rd/hidden.ts'),
   'null-scattering': () => import('./null-scattering/hidden.ts'),
 };

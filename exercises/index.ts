@@ -13,6 +13,7 @@ const LOADERS: Record<string, Loader> = {
   'raymarch-exact': () => import('./raymarch-exact/exercise.ts'),
   'delta-tracking': () => import('./delta-tracking/exercise.ts'),
   'single-scatter-shadow': () => import('./single-scatter-shadow/exercise.ts'),
+  'hash-encoding': () => import('./hash-encoding/exercise.ts'),
   'dipole-rd': () => import('./dipole-rd/exercise.ts'),
   'null-scattering': () => import('./null-scattering/exercise.ts'),
 };

@@ -22,7 +22,8 @@ async function openWidget(page: Page, state: Record<string, string>, query = '')
   return widget;
 }
 
-// A small problem, so that a few iterations run quickly on SwiftShader.
+// The neural field's preset (key 7): a small problem, so that a few iterations run
+// quickly on SwiftShader.
 const SMALL = { model: 'neural', views: '4', steps: '16', batch: '256', rate: '0.05' };
 
 test.setTimeout(300_000);

@@ -17,6 +17,7 @@ describe('grade --self-test', () => {
       'raymarch-exact',
       'delta-tracking',
       'single-scatter-shadow',
+      'hash-encoding',
       'dipole-rd',
     ])
       expect(EXERCISE_IDS).toContain(id);

@@ -41,8 +41,17 @@ import type { InverseRenderFrame } from './widget.ts';
  * widgets share) past the long-task threshold (issue 23: steps of at most SLICE_MS).
  */
 const BATCH_TARGET_MS = 0.8 * SLICE_MS;
-/** How often the views are re-rendered and read back during a run. */
+/** How often the views are re-rendered and read back during a run, at the most. */
 const REDRAW_MS = 700;
+/**
+ * The largest share of a run's wall time that the redraws (render of every view and
+ * read-back) may take. A redraw marches every pixel of every view, training and
+ * held-out: for the neural field on SwiftShader it measured as long as 3–4 iterations
+ * (bench/neural.ts: 9 views of 32² pixels × 32 samples, 7.3 s against 2.0 s per
+ * iteration of 512 rays), so redrawing every REDRAW_MS took most of the minute.
+ * The interval therefore grows to (1 − share)/share times the last redraw's wall time.
+ */
+const REDRAW_SHARE = 0.2;
 /** Window of the iteration-rate readout. */
 const RATE_WINDOW_MS = 4000;
 /** Scale of the error image: |C − C*| of this size is the brightest colour. */
@@ -133,6 +142,9 @@ export function createView(
   let setupMs = NaN;
   /** The last batch: its iterations and wall time (ms); null before the first. */
   let lastBatch: { iterations: number; milliseconds: number } | null = null;
+  /** Wall time of the last redraw (render of every view and read-back), ms, and its iteration. */
+  let redrawMs = 0;
+  let drawnIteration = -1;
   let running = false;
   /** Bumped whenever the run must stop (reset, new problem, device loss, destroy). */
   let token = 0;
@@ -274,7 +286,9 @@ export function createView(
     if (!current) return;
     const problem = current.problem;
     const started = performance.now();
+    drawnIteration = iteration;
     const { image, gpuMs } = await current.render();
+    redrawMs = performance.now() - started;
     if (current !== trainer) return;
     if (iteration === 0) {
       // Before any iteration the frame's cost is this render of every view.
@@ -380,6 +394,14 @@ export function createView(
   function toggleRun(): void {
     if (running) {
       stop('paused');
+      // The loop redraws only every few redraws' time (REDRAW_SHARE): show the fit
+      // where the run paused.
+      if (drawnIteration !== iteration)
+        void drawFit()
+          .then(report)
+          .catch((error: unknown) =>
+            setStatus(`Redraw failed: ${error instanceof Error ? error.message : String(error)}`),
+          );
       return;
     }
     if (!trainer) return;
@@ -442,7 +464,8 @@ export function createView(
         rateSamples.push({ at: now, iteration, spent });
         while (rateSamples.length > 2 && now - rateSamples[1]!.at > RATE_WINDOW_MS)
           rateSamples.shift();
-        if (now - lastDraw > REDRAW_MS || iteration >= budget() || done === 0) {
+        const redrawEvery = Math.max(REDRAW_MS, ((1 - REDRAW_SHARE) / REDRAW_SHARE) * redrawMs);
+        if (now - lastDraw > redrawEvery || iteration >= budget() || done === 0) {
           await drawFit();
           if (!live()) return;
           lastDraw = performance.now();
