@@ -125,9 +125,11 @@ export type SlabChunkRunner = (run: SlabRun, first: number, last: number) => Pro
  * The twin's replay of a run in chunks of batches computed by `runChunk` (in the compute
  * worker, so the page's thread only appends their sums: issue 23, no main-thread task
  * over 50 ms; on the page the replay held 60–130 ms tasks with its garbage collection).
- * Each chunk is sized to CHUNK_MS from the cost of the last; `cancelled()` is checked
- * between chunks, and an abort of the chunk's job (the reader's next input) ends the
- * replay with the batches done so far. Returns them and the worker's float64 time.
+ * Each chunk is sized to CHUNK_MS from the cost of the last, and the next one is asked
+ * for before the current one is back, so that the worker does not wait while the page
+ * takes a result (an input's jobs then wait for at most two chunks). `cancelled()` is
+ * checked between chunks, and an abort of a chunk's job (the reader's next input) ends
+ * the replay with the batches done so far. Returns them and the worker's float64 time.
  */
 export async function monteCarloCpu(
   run: SlabRun,
@@ -148,13 +150,21 @@ export async function monteCarloCpu(
   };
   let busy = 0;
   let perBatch = 0;
-  for (let b = 0; b < run.batches;) {
-    if (cancelled()) return { batches, milliseconds: busy, complete: false };
+  const ask = (first: number): { first: number; last: number; result: Promise<SlabChunk> } => {
     const size = perBatch > 0 ? Math.max(1, Math.floor(CHUNK_MS / perBatch)) : 1;
-    const last = Math.min(b + size, run.batches);
+    const last = Math.min(first + size, run.batches);
+    const result = runChunk(run, first, last);
+    // Awaited in its turn; until then a rejection (an abort) must not go unhandled.
+    result.catch(() => undefined);
+    return { first, last, result };
+  };
+  let current = run.batches > 0 ? ask(0) : null;
+  while (current) {
+    if (cancelled()) return { batches, milliseconds: busy, complete: false };
+    const ahead = current.last < run.batches ? ask(current.last) : null;
     let chunk: SlabChunk;
     try {
-      chunk = await runChunk(run, b, last);
+      chunk = await current.result;
     } catch (error) {
       if (error instanceof DOMException && error.name === 'AbortError')
         return { batches, milliseconds: busy, complete: false };
@@ -162,8 +172,8 @@ export async function monteCarloCpu(
     }
     batches = appendBatches(batches, chunk.batches);
     busy += chunk.milliseconds;
-    perBatch = chunk.milliseconds / (last - b);
-    b = last;
+    perBatch = chunk.milliseconds / (current.last - current.first);
+    current = ahead;
   }
   return { batches, milliseconds: busy, complete: true };
 }
