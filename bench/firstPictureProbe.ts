@@ -2,12 +2,13 @@
 // build (issue 23's first-picture regressions): the page's WebGPU calls are wrapped
 // before any script runs, so every pipeline compile (createComputePipelineAsync,
 // createRenderPipelineAsync), every read-back (mapAsync) and every
-// onSubmittedWorkDone is logged with its start and end, together with the long tasks
-// and the widget's frame attributes. The widget is loaded, left to settle as the
-// interaction bench does (data-settled held 300 ms, or a quiet 2 s in builds without
-// it), given the bench's input (its first slider to 60 % of the range), and the log
-// from 3 s before the input to the first picture after it is printed: what was still
-// compiling or reading back when the input came, and what the first picture waited for.
+// onSubmittedWorkDone is logged with its start and end, together with the long tasks,
+// the compute worker's jobs (request to answer) and the widget's frame attributes. The
+// widget is loaded, left to settle as the interaction bench does (data-settled held
+// 300 ms, or a quiet 2 s in builds without it), given the bench's input (its first
+// slider to 60 % of the range), and the log from 3 s before the input to the first
+// picture after it is printed: what was still compiling, reading back or computing in
+// the worker when the input came, and what the first picture waited for.
 //   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N]
 import { chromium } from 'playwright-core';
 import { preview } from 'vite';
@@ -57,6 +58,33 @@ const WRAP = `(() => {
     GPUQueue.prototype.submit = function (...args) {
       log.push({ what: 'submit', start: performance.now(), end: performance.now(), label: '' });
       return submit.apply(this, args);
+    };
+  }
+  // Jobs of the compute worker (src/workers/compute.ts): each request from its
+  // postMessage to the answer with the same id, named widget.job.
+  if (typeof Worker !== 'undefined') {
+    const Original = Worker;
+    window.Worker = class extends Original {
+      constructor(...args) {
+        super(...args);
+        const pending = new Map();
+        this.addEventListener('message', (event) => {
+          const entry = pending.get(event.data && event.data.id);
+          if (!entry) return;
+          entry.end = performance.now();
+          pending.delete(event.data.id);
+        });
+        const post = this.postMessage.bind(this);
+        this.postMessage = (message, transfer) => {
+          if (message && typeof message.name === 'string') {
+            const entry = { what: 'worker job', start: performance.now(), end: null,
+              label: message.widget + '.' + message.name };
+            log.push(entry);
+            pending.set(message.id, entry);
+          }
+          return transfer === undefined ? post(message) : post(message, transfer);
+        };
+      }
     };
   }
   try {

@@ -5,7 +5,14 @@
 // presets work, and without WebGPU the float64 twin trains in a Web Worker and
 // says so.
 import { expect, test, type Locator } from '@playwright/test';
-import { canvasStats, parseDisplayed, readout, trackErrors, widgetOpener } from './support.ts';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  trackErrors,
+  waitForSettled,
+  widgetOpener,
+} from './support.ts';
 
 const CHAPTER = '/chapters/08-inverse-volume-rendering.html';
 const ID = 'inverse-render-1';
@@ -69,6 +76,8 @@ test('draws the target views, the held-out view and the initial fit on the GPU; 
 
   await widget.locator('[data-action="reset"]').click();
   await expect.poll(() => readout(widget, 'iteration')).toBe('0 of 1000');
+  // The set-up shows the targets first (a preview, issue 23): the MSE is the settled frame's.
+  await waitForSettled(widget);
   expect(parseDisplayed(await readout(widget, 'train-mse'))).toBeCloseTo(before, 4);
   await expect(start).toHaveText('Start');
 

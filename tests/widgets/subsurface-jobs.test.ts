@@ -24,9 +24,16 @@ import {
   discInputsOf,
   jobs as dipoleJobs,
 } from '../../src/widgets/dipole-profile/jobs.ts';
-import { evaluateProfilesCpu, inputsFrom } from '../../src/widgets/dipole-profile/model.ts';
+import {
+  DISC_FRACTION,
+  discColour,
+  evaluateProfilesCpu,
+  inputsFrom,
+  slabRunFor,
+} from '../../src/widgets/dipole-profile/model.ts';
 import { DIPOLE_PROFILE } from '../../src/widgets/dipole-profile/schema.ts';
-import { CPU_DISC_SIZE } from '../../src/widgets/dipole-profile/cpuBackend.ts';
+import { CPU_DISC_SIZE, monteCarloCpu } from '../../src/widgets/dipole-profile/cpuBackend.ts';
+import { runSlabCpuBatches } from '../../src/subsurface/slabKernel.ts';
 
 describe('translucent-render jobs', () => {
   const scene = { ...sceneFromValues(TRANSLUCENT_DEFAULTS), size: 12 };
@@ -115,5 +122,86 @@ describe('dipole-profile jobs', () => {
     const halfway = at(disc.size / 2 + disc.size / 5, disc.size / 2);
     expect(centre).toBeGreaterThan(halfway);
     expect(at(0, 0)).toBeLessThan(halfway);
+  });
+
+  it('paints each pixel the colour of its ring, as a pixel-by-pixel evaluation does', () => {
+    // The disc by the definition: every pixel evaluates discColour at its ring's radius
+    // (half a pixel wide) and blends the rim line; the job caches per ring as bytes.
+    for (const view of [2, inputs.view]) {
+      const disc = { ...discInputsOf(inputs), view };
+      const drawn = dipoleJobs.disc(disc);
+      const pixel = (2 * view) / CPU_DISC_SIZE;
+      const rim = DISC_FRACTION * view;
+      const background = [0.018, 0.02, 0.026].map((v) => Math.round(255 * v ** (1 / 2.2)));
+      for (let y = 0; y < CPU_DISC_SIZE; y += 5) {
+        for (let x = 0; x < CPU_DISC_SIZE; x++) {
+          const px = ((x + 0.5) / CPU_DISC_SIZE - 0.5) * 2 * view;
+          const py = ((y + 0.5) / CPU_DISC_SIZE - 0.5) * 2 * view;
+          const r = Math.sqrt(px * px + py * py);
+          let rgb =
+            r <= rim
+              ? discColour(disc, (Math.round((2 * r) / pixel) * pixel) / 2).map((v) =>
+                  Math.round(255 * v),
+                )
+              : background;
+          if (Math.abs(r - rim) < 0.75 * pixel)
+            rgb = rgb.map((v) => Math.round(0.3 * v + 0.7 * 182));
+          const o = 4 * (y * CPU_DISC_SIZE + x);
+          expect([...drawn.pixels.subarray(o, o + 4)]).toEqual([...rgb, 255]);
+        }
+      }
+    }
+  });
+});
+
+describe('dipole-profile Monte Carlo in chunks', () => {
+  const values = Object.fromEntries(DIPOLE_PROFILE.parameters.map((p) => [p.name, p.default]));
+  const run = slabRunFor(inputsFrom(values), 8 * 64, 0);
+  const chunk = (r: typeof run, first: number, last: number) =>
+    Promise.resolve(dipoleJobs.slabChunk(r, first, last));
+
+  it('adds up to the same batches as one replay of the whole run', async () => {
+    expect(run.batches).toBe(8);
+    const sizes: number[] = [];
+    const result = await monteCarloCpu(
+      run,
+      (r, first, last) => {
+        sizes.push(last - first);
+        return chunk(r, first, last);
+      },
+      () => false,
+    );
+    expect(result.complete).toBe(true);
+    expect(sizes.reduce((a, b) => a + b, 0)).toBe(run.batches);
+    expect(result.batches).toEqual(runSlabCpuBatches(run, 0, run.batches));
+    expect(result.milliseconds).toBeGreaterThanOrEqual(0);
+  });
+
+  it('stops at an aborted chunk with the batches done before it', async () => {
+    let calls = 0;
+    const result = await monteCarloCpu(
+      run,
+      (r, first, last) => {
+        calls += 1;
+        if (calls === 3) return Promise.reject(new DOMException('input', 'AbortError'));
+        return chunk(r, first, last);
+      },
+      () => false,
+    );
+    expect(result.complete).toBe(false);
+    const done = result.batches.channels[0]!.walks.length;
+    expect(done).toBeGreaterThan(0);
+    expect(done).toBeLessThan(run.batches);
+    expect(result.batches).toEqual(runSlabCpuBatches(run, 0, done));
+  });
+
+  it('passes on a chunk that failed for another reason', async () => {
+    await expect(
+      monteCarloCpu(
+        run,
+        () => Promise.reject(new Error('worker crashed')),
+        () => false,
+      ),
+    ).rejects.toThrow('worker crashed');
   });
 });

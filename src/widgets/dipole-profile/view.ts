@@ -40,7 +40,10 @@ import { ProfilePlot, profileLegend } from './profilePlot.ts';
 import { betterDipoleNote } from './modelNote.ts';
 import { count, type DipoleFrame, type MonteCarloSummary } from './widget.ts';
 
-/** The CPU fallback's curves and disc, in the compute worker, cached by parameters (jobs.ts). */
+/**
+ * The CPU fallback's curves, disc and Monte Carlo chunks, in the compute worker, cached by
+ * parameters (jobs.ts).
+ */
 const cpuJobs = workerJobs<typeof dipoleJobTable>('dipole-profile');
 
 /** Side of the disc picture on the GPU (pixels). */
@@ -168,13 +171,16 @@ export function createView(
 
   /**
    * One Monte Carlo run of `photons` per channel, appended to the accumulation if the
-   * medium is still the same and the run was not cancelled. Returns its cost.
+   * medium is still the same and the run was not cancelled. Returns its cost. On the CPU,
+   * `signal` (a render's input signal) ends the run early with the batches done, so that
+   * the next input's picture does not wait for it.
    */
   const monteCarloStep = async (
     backend: Backend<DipoleProfileGpu>,
     inputs: ProfileInputs,
     photons: number,
     token: number,
+    signal?: AbortSignal,
   ): Promise<{ milliseconds: number } | null> => {
     const key = mc.key;
     const run = slabRunFor(inputs, photons, mc.nextOffset);
@@ -187,7 +193,12 @@ export function createView(
       milliseconds = result.gpuMs ?? result.wallMs;
       timing = result.gpuMs === null ? 'gpu-wall' : 'gpu-timestamp';
     } else {
-      const result = await monteCarloCpu(run, () => token !== mcToken);
+      const result = await monteCarloCpu(
+        run,
+        (chunkRun, first, last) =>
+          cpuJobs.run('slabChunk', [chunkRun, first, last], signal ? { signal } : {}),
+        () => token !== mcToken,
+      );
       batches = result.batches;
       milliseconds = result.milliseconds;
       timing = 'cpu';
@@ -280,7 +291,10 @@ export function createView(
       cancelRun('');
       mc = emptyMonteCarlo(key);
     }
-    if (mc.batches === null) {
+    // The first run is complete once it reached its photons (planBatches rounds up); one
+    // an input cut short (CPU) is finished by the next render of the same medium.
+    const firstRun = firstRunPhotons(inputs);
+    if (mc.photons < firstRun) {
       // Issue 23: the models first (a millisecond), the Monte Carlo's first run (most of
       // a second on a CPU WebGPU) in the next stage, so a slider shows its curves at once.
       if (request.stage === 0)
@@ -291,7 +305,13 @@ export function createView(
             pending: 'frame',
           },
         };
-      const step = await monteCarloStep(backend, inputs, firstRunPhotons(inputs), mcToken);
+      const step = await monteCarloStep(
+        backend,
+        inputs,
+        firstRun - mc.photons,
+        mcToken,
+        request.signal,
+      );
       if (step) frameMilliseconds += step.milliseconds;
     }
     return frameOf(inputs, result.curves);

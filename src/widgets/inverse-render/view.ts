@@ -357,7 +357,31 @@ export function createView(
       paintView(canvases.target, targets, view, problem.size);
     if (novelTarget) paintView(novelTarget, targets, problem.trainViews, problem.size);
     lastBatch = null;
+    // Issue 23: the targets are a picture of the new problem already; show them with the
+    // stage line saying that set-up goes on, instead of nothing until the first render of
+    // the fit (seconds of pipeline builds on a CPU WebGPU). The render's own frame follows.
+    trainMse = NaN;
+    initialTrainMse = NaN;
+    cost = {
+      milliseconds: performance.now() - started,
+      timing: frameBackend.kind === 'cpu' ? 'cpu' : 'gpu-wall',
+    };
+    const preview = frame();
+    if (preview) {
+      setStatus('Setting up: the target views are drawn; rendering the initial fit…');
+      context.report(
+        {
+          ...preview,
+          refinement: {
+            label: 'Setting up: target views drawn; the first render of the fit follows',
+            pending: 'job',
+          },
+        },
+        frameBackend,
+      );
+    }
     await drawFit();
+    if (setup !== setupToken || context.signal.aborted) return;
     setupMs = performance.now() - started;
     initialTrainMse = trainMse;
     trainerKey = key;
@@ -648,6 +672,7 @@ export function createView(
     },
 
     createRenderer: (gpu) => ({ gpu }),
+    refinement: (shown) => shown.refinement,
 
     async renderGpu(_renderer, gpu) {
       frameBackend = { kind: 'gpu', adapterDescription: gpu.adapterDescription };

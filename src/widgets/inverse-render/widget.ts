@@ -6,6 +6,7 @@
 // (view.ts): it reports a frame after each batch of iterations.
 import { defineWidget, type FrameCost } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import type { Refinement } from '../base/refinement.ts';
 import { INVERSE_RENDER } from './schema.ts';
 
 /** What the readouts and the cost line need from the training's current state. */
@@ -59,6 +60,11 @@ export interface InverseRenderFrame {
   rays: number;
   learningRate: number;
   regularizer: string;
+  /**
+   * Set during set-up (issue 23): the target views are drawn and the first render of the
+   * fit is under way, so the training numbers are not known yet. Absent once set up.
+   */
+  refinement?: Refinement;
 }
 
 /** Bytes as KiB or MiB. */
@@ -77,6 +83,8 @@ function modelText(frame: InverseRenderFrame): string {
 
 /** What the frame cost: the set-up of the problem before training, then the last batch of iterations. */
 function costText(frame: InverseRenderFrame, how: string): string {
+  if (frame.refinement)
+    return `set-up in progress: the targets of every view drawn in ${formatMilliseconds(frame.cost.milliseconds)} wall time; the first render of the fit follows.`;
   const setup = `set-up (targets and the first render of every view) ${formatMilliseconds(frame.setupMs)} wall time`;
   if (!frame.lastBatch || frame.iteration === 0)
     return `Render of every view in ${formatMilliseconds(frame.cost.milliseconds)} (${how}); ${setup}.`;
@@ -148,12 +156,16 @@ export const widget = defineWidget<InverseRenderFrame>({
       {
         key: 'train-mse',
         label: 'Training MSE, all pixels',
-        format: (frame) => `${formatNumber(frame.trainMse, 3)} (at the last redraw)`,
+        format: (frame) =>
+          frame.refinement
+            ? '— (setting up: the first render of the fit follows)'
+            : `${formatNumber(frame.trainMse, 3)} (at the last redraw)`,
       },
       {
         key: 'reduction',
         label: 'Reduction from the start',
         format: (frame) => {
+          if (frame.refinement) return '— (setting up)';
           const text =
             frame.iteration === 0
               ? `start: ${formatNumber(frame.initialTrainMse, 3)}`
