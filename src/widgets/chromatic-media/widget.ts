@@ -40,6 +40,12 @@ const perEstimator = (
   value: (s: EstimatorStats, name: EstimatorName) => string,
 ): string => ESTIMATORS.map((name) => value(frame.stats[name], name)).join(' · ');
 
+/** A statistic of the samples: '…' until each pixel has two (a standard error needs two). */
+const perEstimatorStatistic = (
+  frame: ChromaticFrame,
+  value: (s: EstimatorStats) => string,
+): string => (frame.samples < 2 ? '… (needs 2 samples per pixel)' : perEstimator(frame, value));
+
 /** The estimator with the smallest value of a measure (lower is better). */
 function best(frame: ChromaticFrame, measure: (s: EstimatorStats) => number): string {
   let winner: EstimatorName = 'oneChannel';
@@ -84,16 +90,16 @@ export const widget = defineWidget<ChromaticFrame>({
         perEstimator(f, (s) => formatNumber(s.lookupsPerSample, 3)),
       ),
       row('channel-se', 'Standard error R/G/B (RMS over the sphere)', (f) =>
-        perEstimator(f, (s) => s.channelSe.map((x) => formatNumber(x, 2)).join('/')),
+        perEstimatorStatistic(f, (s) => s.channelSe.map((x) => formatNumber(x, 2)).join('/')),
       ),
       row('colour-noise', 'Colour noise: SE of chromaticity ×1000', (f) =>
-        perEstimator(f, (s) => formatNumber(s.colourNoise, 3)),
+        perEstimatorStatistic(f, (s) => formatNumber(s.colourNoise, 3)),
       ),
       row('error', 'RMS error against the reference', (f) =>
-        perEstimator(f, (s) => formatNumber(s.rmsError, 2)),
+        perEstimatorStatistic(f, (s) => formatNumber(s.rmsError, 2)),
       ),
       row('efficiency', 'Variance × time per sample (lower wins)', (f) =>
-        perEstimator(f, (s) => formatNumber(s.varianceTime, 2)),
+        perEstimatorStatistic(f, (s) => formatNumber(s.varianceTime, 2)),
       ),
       row('winner', 'Lowest colour noise · lowest variance × time', (f) =>
         f.samples < 2
