@@ -79,9 +79,9 @@ export const CHROMATIC_MEDIA: WidgetEntry = {
       label: 'Target samples per pixel',
       symbol: 'N',
       unit: '',
-      min: 4,
+      min: 2,
       max: 1024,
-      step: 4,
+      step: 2,
       default: 64,
       description:
         'The picture accumulates passes until every estimator has this many samples per pixel.',
