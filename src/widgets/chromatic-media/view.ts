@@ -155,12 +155,15 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
       const row = document.createElement('div');
       row.className = 'sb-chromatic-row';
       row.style.display = 'grid';
-      row.style.gridTemplateColumns = 'repeat(4, minmax(0, 1fr))';
+      // Two by two: each picture gets half the stage's width (64 pixels scaled up, square).
+      row.style.gridTemplateColumns = 'repeat(2, minmax(0, 1fr))';
       row.style.gap = '0.5rem';
       for (const [name, picture] of Object.entries(pictures)) {
         const figure = document.createElement('figure');
         figure.style.margin = '0';
         picture.element.style.width = '100%';
+        picture.element.style.height = 'auto';
+        picture.element.style.aspectRatio = '1 / 1';
         picture.element.style.imageRendering = 'pixelated';
         figure.appendChild(picture.element);
         const caption = document.createElement('figcaption');

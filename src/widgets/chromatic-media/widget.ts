@@ -46,12 +46,11 @@ const perEstimatorStatistic = (
   value: (s: EstimatorStats) => string,
 ): string => (frame.samples < 2 ? '… (needs 2 samples per pixel)' : perEstimator(frame, value));
 
-/** The estimator with the smallest value of a measure (lower is better). */
+/** The estimator(s) with the smallest value of a measure (lower is better; ties all named). */
 function best(frame: ChromaticFrame, measure: (s: EstimatorStats) => number): string {
-  let winner: EstimatorName = 'oneChannel';
-  for (const name of ESTIMATORS)
-    if (measure(frame.stats[name]) < measure(frame.stats[winner])) winner = name;
-  return ESTIMATOR_LABELS[winner];
+  const lowest = Math.min(...ESTIMATORS.map((name) => measure(frame.stats[name])));
+  const winners = ESTIMATORS.filter((name) => measure(frame.stats[name]) === lowest);
+  return winners.map((name) => ESTIMATOR_LABELS[name]).join(' = ');
 }
 
 const row = (
