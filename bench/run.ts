@@ -1,6 +1,6 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,peers,photons,grading,pages,interaction,neural
+// --only=core,transmittance,estimators,subsurface,translucent,chromatic,widgets,scenes,peers,photons,grading,pages,interaction,neural
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
 // and --only-widgets=a,b, see bench/interaction.ts; `neural` takes --seconds=S and the
@@ -8,6 +8,7 @@
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
+import { benchChromatic } from './chromatic.ts';
 import { benchCore } from './core.ts';
 import { benchEstimators } from './estimators.ts';
 import { benchGrading } from './grading.ts';
@@ -68,6 +69,8 @@ if (wanted('translucent'))
       repeats: quick ? 3 : 9,
     })),
   );
+if (wanted('chromatic'))
+  tables.push(await benchChromatic(device, { spp: quick ? 16 : 64, spreads: [1, 16, 100] }));
 if (wanted('grading')) tables.push(await benchGrading(device, { repeats: quick ? 3 : 9 }));
 if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
 if (wanted('pages')) tables.push(...(await benchPages({ dist, repeats: quick ? 1 : 3 })));

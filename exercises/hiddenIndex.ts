@@ -14,5 +14,6 @@ export const HIDDEN_LOADERS: Record<string, Loader> = {
   'single-scatter-shadow': () => import('./single-scatter-shadow/hidden.ts'),
   'hash-encoding': () => import('./hash-encoding/hidden.ts'),
   'dipole-rd': () => import('./dipole-rd/hidden.ts'),
+  'hero-weight': () => import('./hero-weight/hidden.ts'),
   'null-scattering': () => import('./null-scattering/hidden.ts'),
 };

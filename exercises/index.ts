@@ -15,6 +15,7 @@ const LOADERS: Record<string, Loader> = {
   'single-scatter-shadow': () => import('./single-scatter-shadow/exercise.ts'),
   'hash-encoding': () => import('./hash-encoding/exercise.ts'),
   'dipole-rd': () => import('./dipole-rd/exercise.ts'),
+  'hero-weight': () => import('./hero-weight/exercise.ts'),
   'null-scattering': () => import('./null-scattering/exercise.ts'),
 };
 

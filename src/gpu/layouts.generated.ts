@@ -21,6 +21,26 @@ const BeerLawParams = /* @__PURE__ */ struct('BeerLawParams', 112, 16, {
   height: [44, f32],
   layers: [48, /* @__PURE__ */ array(vec4f, 4, 16)],
 });
+const vec3f = { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 } as const;
+const ChromaticMedium = /* @__PURE__ */ struct('ChromaticMedium', 32, 16, {
+  sigmaT: [0, vec3f],
+  densityBase: [12, f32],
+  albedo: [16, vec3f],
+  densitySlope: [28, f32],
+});
+const ChromaticParams = /* @__PURE__ */ struct('ChromaticParams', 80, 16, {
+  medium: [0, ChromaticMedium],
+  lightDirection: [32, vec3f],
+  g: [44, f32],
+  width: [48, u32],
+  height: [52, u32],
+  spp: [56, u32],
+  frame: [60, u32],
+  estimator: [64, u32],
+  extent: [68, f32],
+  pad0: [72, u32],
+  pad1: [76, u32],
+});
 const DeltaParams = /* @__PURE__ */ struct('DeltaParams', 32, 4, {
   width: [0, u32],
   height: [4, u32],
@@ -52,7 +72,6 @@ const mat4x4f = {
   size: 64,
   align: 16,
 } as const;
-const vec3f = { kind: 'vector', scalar: 'f32', length: 3, size: 12, align: 16 } as const;
 const LobeView = /* @__PURE__ */ struct('LobeView', 128, 16, {
   viewProjection: [0, mat4x4f],
   eye: [64, vec3f],
@@ -383,6 +402,9 @@ const VreRayParams = /* @__PURE__ */ struct('VreRayParams', 48, 4, {
 /** Bound structs of kernels/beer-law.wesl. */
 export const beerLawKernel = { BeerLawParams: BeerLawParams };
 
+/** Bound structs of kernels/chromatic-media.wesl. */
+export const chromaticMediaKernel = { ChromaticParams: ChromaticParams };
+
 /** Bound structs of kernels/delta-tracking.wesl. */
 export const deltaTrackingKernel = { DeltaParams: DeltaParams };
 
@@ -455,6 +477,7 @@ export const vreRayKernel = { VreRayParams: VreRayParams };
 
 export const KERNEL_LAYOUTS = {
   'kernels/beer-law.wesl': beerLawKernel,
+  'kernels/chromatic-media.wesl': chromaticMediaKernel,
   'kernels/delta-tracking.wesl': deltaTrackingKernel,
   'kernels/dipole-profile.wesl': dipoleProfileKernel,
   'kernels/hg-lobe-3d.wesl': hgLobe3dKernel,

@@ -29,6 +29,7 @@ const NON_DEFAULT: Readonly<Record<string, readonly [string, string] | null>> = 
   'volume-path-tracer': ['optical-thickness', '1'],
   'photon-map': ['radius', '0.2'],
   'mie-lobe': ['log-radius', '-1.5'],
+  'chromatic-media': ['exposure', '5'],
   exercise: null,
 };
 
@@ -51,6 +52,8 @@ const CHEAPER: Readonly<Record<string, Readonly<Record<string, string>>>> = {
   'transfer-function': { step: '2' },
   // 8 view-ray samples instead of 32.
   'rayleigh-sky': { steps: '8' },
+  // Two samples per pixel in one pass instead of accumulating passes of four up to 64.
+  'chromatic-media': { spp: '2', target: '2' },
 };
 
 const FRAME = { width: 800, height: 600 };

@@ -19,6 +19,7 @@ describe('grade --self-test', () => {
       'single-scatter-shadow',
       'hash-encoding',
       'dipole-rd',
+      'hero-weight',
       'null-scattering',
     ])
       expect(EXERCISE_IDS).toContain(id);

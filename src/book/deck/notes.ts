@@ -183,4 +183,14 @@ export const SPEAKER_NOTES: Readonly<Record<SlideKey, string>> = {
     'Three images of the same skin sphere: Lambert, dipole BSSRDF by the Jensen–Buhler octree gather, and ' +
     'the path-traced reference. Point past the terminator: light bleeds only with the BSSRDF and the path ' +
     'tracer. Drag ε and point at “Nodes visited per pixel” and the BSSRDF error.',
+  // ---- Chapter 12: colour in a medium ------------------------------------------
+  'chromatic-media/Colour in a medium: three ways to sample a chromatic path':
+    'Blue is 16× thicker than red ($\\sigma_t$ = 0.5, 2, 8 per metre). Left to right: one walk per channel, ' +
+    'hero wavelength, spectral tracking, and the reference. Point at “Colour noise” and “Variance × time”: ' +
+    'here one channel at a time wins variance × time (0.32 against 0.40 and 1.26 in the chapter’s ' +
+    'measurement) and hero wavelength has about the same colour noise. Drag the spread slider to 100, then to 1.',
+  'chromatic-media/A grey medium: the three estimators agree':
+    'Spread 1: all channels alike. Point at “Colour noise”: exactly 0 for hero wavelength and spectral ' +
+    'tracking, because one walk serves all channels; one channel at a time shows coloured speckle and takes ' +
+    'about 2.6× as long. The winner row names hero wavelength for variance × time.',
 };

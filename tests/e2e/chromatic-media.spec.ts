@@ -1,0 +1,53 @@
+// <sb-chromatic-media> in Chromium with WebGPU (SwiftShader): the three estimators draw a
+// sphere, and in a grey medium (a deep link: spread 1) hero wavelength and spectral tracking
+// have exactly zero colour noise while one channel at a time does not (one shared walk per
+// sample against three independent ones); moving the spread slider to 16 gives hero
+// wavelength colour noise too. Without WebGPU the float64 twin draws in the compute worker and
+// says so. Two cheap tests: 2 samples per pass and a target of 2, so the first frame is complete (a standard error needs two samples).
+import { expect, test } from '@playwright/test';
+import { canvasStats, readout, trackErrors, waitForRender, widgetOpener } from './support.ts';
+
+const CHAPTER = '/chapters/12-beyond-the-lecture.html';
+const open = widgetOpener(CHAPTER, 'sb-chromatic-media', 'chromatic-media-1');
+const CHEAP = { spp: '2', target: '2' };
+
+/** The colour noise of one channel at a time, hero wavelength and spectral tracking. */
+async function colourNoise(widget: Parameters<typeof readout>[0]): Promise<number[]> {
+  const text = await readout(widget, 'colour-noise');
+  return text.split('·').map((part) => Number(part.trim()));
+}
+
+test('grey medium from a deep link: zero colour noise for the shared walks; the spread slider changes it', async ({
+  page,
+}) => {
+  const errors = trackErrors(page);
+  const widget = await open(page, { ...CHEAP, spread: '1' });
+  await expect(widget.locator('.sb-cost')).toContainText('WebGPU');
+  await expect(widget.locator('input[type="number"][name="spread"]')).toHaveValue('1');
+  const stats = await canvasStats(widget.locator('canvas').first());
+  expect(stats.luminanceDeviation).toBeGreaterThan(2);
+  const [one, hero, spectral] = await colourNoise(widget);
+  expect(one).toBeGreaterThan(0);
+  expect(hero).toBe(0);
+  expect(spectral).toBe(0);
+  await expect(widget.locator('[data-readout="capped"]')).toHaveText('0');
+
+  const rendered = Number(await widget.getAttribute('data-rendered'));
+  const spread = widget.locator('input[type="number"][name="spread"]');
+  await spread.fill('16');
+  await spread.press('Enter');
+  await waitForRender(widget, rendered + 1);
+  const [, heroAfter] = await colourNoise(widget);
+  expect(heroAfter).toBeGreaterThan(0);
+  expect(errors).toEqual([]);
+});
+
+test('?backend=cpu: the float64 twin draws the smaller picture and says so', async ({ page }) => {
+  const widget = await open(page, { ...CHEAP, spread: '1' }, '?backend=cpu');
+  await expect(widget.locator('.sb-cost')).toContainText('float64 twin');
+  await expect(widget.locator('[data-readout="samples"]')).toContainText('24×24');
+  const [one, hero, spectral] = await colourNoise(widget);
+  expect(one).toBeGreaterThan(0);
+  expect(hero).toBe(0);
+  expect(spectral).toBe(0);
+});
