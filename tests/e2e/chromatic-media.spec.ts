@@ -3,7 +3,10 @@
 // have exactly zero colour noise while one channel at a time does not (one shared walk per
 // sample against three independent ones); moving the spread slider to 16 gives hero
 // wavelength colour noise too. Without WebGPU the float64 twin draws in the compute worker and
-// says so. Two cheap tests: 2 samples per pass and a target of 2, so the first frame is complete (a standard error needs two samples).
+// says so. The error-against-time plot gets a point per estimator and pass, and starts
+// again on an input. Two cheap tests: 2 samples per pass and a target of 2 (4 where the
+// plot's second point is checked), so the first frame is complete (a standard error needs
+// two samples).
 import { expect, test } from '@playwright/test';
 import { canvasStats, readout, trackErrors, waitForRender, widgetOpener } from './support.ts';
 
@@ -21,7 +24,7 @@ test('grey medium from a deep link: zero colour noise for the shared walks; the 
   page,
 }) => {
   const errors = trackErrors(page);
-  const widget = await open(page, { ...CHEAP, spread: '1' });
+  const widget = await open(page, { ...CHEAP, target: '4', spread: '1' });
   await expect(widget.locator('.sb-cost')).toContainText('WebGPU');
   await expect(widget.locator('input[type="number"][name="spread"]')).toHaveValue('1');
   const stats = await canvasStats(widget.locator('canvas').first());
@@ -32,6 +35,19 @@ test('grey medium from a deep link: zero colour noise for the shared walks; the 
   expect(spectral).toBe(0);
   await expect(widget.locator('[data-readout="capped"]')).toHaveText('0');
 
+  // The plot of error against time: labelled for screen readers, drawn by uPlot with a
+  // legend of the three estimators, one point each per pass (2 passes of 2 to the target 4).
+  const plot = widget.locator('.sb-chromatic-plot');
+  await expect(plot).toHaveAttribute('role', 'img');
+  await expect(plot).toHaveAttribute('aria-label', /RMS error against the reference/);
+  await expect(widget.locator('[data-readout="stage"]')).toContainText(
+    '4 samples per pixel each, done',
+  );
+  await expect(plot).toHaveAttribute('data-points', '2,2,2');
+  await expect(plot.locator('.u-over')).toBeVisible();
+  for (const name of ['One channel at a time', 'Hero wavelength', 'Spectral tracking'])
+    await expect(plot.locator('.u-legend')).toContainText(name);
+
   const rendered = Number(await widget.getAttribute('data-rendered'));
   const spread = widget.locator('input[type="number"][name="spread"]');
   await spread.fill('16');
@@ -39,6 +55,9 @@ test('grey medium from a deep link: zero colour noise for the shared walks; the 
   await waitForRender(widget, rendered + 1);
   const [, heroAfter] = await colourNoise(widget);
   expect(heroAfter).toBeGreaterThan(0);
+  // An input starts the plot again: two points each at the target, not four.
+  await expect(widget.locator('[data-readout="stage"]')).toContainText('done');
+  await expect(plot).toHaveAttribute('data-points', '2,2,2');
   expect(errors).toEqual([]);
 });
 

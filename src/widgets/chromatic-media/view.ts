@@ -3,9 +3,14 @@
 // every estimator (GPU kernel, or the float64 twin in the compute worker), adds it to the
 // running sums, and reports the statistics (model.ts); while fewer than `target` samples
 // per pixel are in, the frame asks for background refinement, so the pictures keep
-// converging while the page stays responsive. Readouts, backend choice and fallback are the
-// base element's (widget.ts holds the rows).
+// converging while the page stays responsive. Under the pictures, a log–log plot of each
+// estimator's RMS error against the reference versus its accumulated time (DESIGN.md:
+// accuracy next to cost), one point per pass, started again with the accumulation.
+// Readouts, backend choice and fallback are the base element's (widget.ts holds the rows).
 import { drawPixels } from '../base/pixels.ts';
+import { LinePlot, createPlotArea } from '../base/plot.ts';
+import { logLogSlope, mergeSeries, type SweepPoint } from '../base/sweep.ts';
+import { formatNumber } from '../base/format.ts';
 import type { ManagedCanvas, ViewContext, WidgetView } from '../base/view.ts';
 import type { FrameRequest } from '../base/refinement.ts';
 import { workerJobs } from '../../workers/compute.ts';
@@ -48,6 +53,36 @@ interface State {
   estimators: Record<EstimatorName, Accumulation>;
   reference: Accumulation;
   pass: number;
+  /** Each estimator's error against the reference after each pass (the plot's points). */
+  errors: Record<EstimatorName, SweepPoint[]>;
+}
+
+/**
+ * Colour and dash of each estimator's curve (Okabe–Ito colours, as delta-tracking's plot),
+ * so that the curves differ in more than colour.
+ */
+const SERIES_STYLE: Record<EstimatorName, { color: string; dash: number[] }> = {
+  oneChannel: { color: '#0072b2', dash: [] },
+  hero: { color: '#d55e00', dash: [10, 5] },
+  spectral: { color: '#009e73', dash: [2, 4] },
+};
+/** The slope is fitted over the points from this many samples per pixel on (see below). */
+const FIT_MIN_SAMPLES = 4;
+
+/**
+ * The fitted exponent p of RMS error ∝ time^p over the points with at least
+ * FIT_MIN_SAMPLES samples per pixel (the first passes also pay the fixed cost of a
+ * dispatch), or null with fewer than two such points. Both the estimator's and the
+ * reference's noise fall as N^(−½) (the reference has REFERENCE_FACTOR× the samples at
+ * every point), so an unbiased estimator at a constant cost per sample gives p ≈ −½.
+ */
+function timeSlope(points: readonly SweepPoint[]): number | null {
+  const usable = points.filter((p) => p.n >= FIT_MIN_SAMPLES);
+  if (usable.length < 2) return null;
+  return logLogSlope(
+    usable.map((p) => p.milliseconds),
+    usable.map((p) => p.rmse),
+  );
 }
 
 export function createView(context: ViewContext): WidgetView<ChromaticFrame, ChromaticGpu> {
@@ -67,6 +102,41 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
   };
   const cpuJobs = workerJobs<typeof jobs>('chromatic-media');
   let state: State | null = null;
+  let plot: LinePlot | null = null;
+  let plotArea: HTMLElement | null = null;
+  let plotHint: HTMLElement | null = null;
+
+  /** Draws the frame's error points; until there are any, the hint stands in for the plot. */
+  function plotErrors(errors: ChromaticFrame['errors']): void {
+    if (!plot || !plotArea || !plotHint) return;
+    const series = ESTIMATORS.map((name) => errors[name]);
+    plotArea.dataset['points'] = series.map((points) => points.length).join(',');
+    const empty = series.every((points) => points.length === 0);
+    plotHint.hidden = !empty;
+    plotArea.hidden = empty;
+    if (empty) return;
+    const merged = mergeSeries(series);
+    // A guide of slope −½ (error ∝ time^(−½), Monte Carlo at a constant cost per sample)
+    // through the first point of one channel at a time.
+    const anchor = errors.oneChannel[0];
+    const guide = merged.x.map((x) =>
+      anchor
+        ? anchor.rmse * 10 ** (-0.5 * (x - Math.log10(Math.max(anchor.milliseconds, 1e-4))))
+        : Number.NaN,
+    );
+    plot.update(merged.x, [
+      ...ESTIMATORS.map((name, i) => {
+        const slope = timeSlope(errors[name]);
+        return {
+          label: `${ESTIMATOR_LABELS[name]}${slope === null ? '' : `, p = ${formatNumber(slope, 3)}`}`,
+          ...SERIES_STYLE[name],
+          spanGaps: true,
+          values: merged.values[i]!,
+        };
+      }),
+      { label: 'slope −½', color: '#888888', dash: [6, 4], values: guide },
+    ]);
+  }
 
   function fresh(inputs: ChromaticInputs, size: number): State {
     return {
@@ -79,6 +149,7 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
       },
       reference: emptyAccumulation(size),
       pass: 0,
+      errors: { oneChannel: [], hero: [], spectral: [] },
     };
   }
 
@@ -118,6 +189,15 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
     for (const name of ESTIMATORS) {
       stats[name] = estimatorStats(s.estimators[name], referenceMeans);
       milliseconds[name] = s.estimators[name].milliseconds;
+      // A point per pass once the error is defined (estimatorStats needs two samples per
+      // pixel); it is measured against the reference as accumulated so far.
+      const rmse = stats[name].rmsError;
+      if (s.estimators[name].samples >= 2 && Number.isFinite(rmse) && rmse > 0)
+        s.errors[name].push({
+          n: s.estimators[name].samples,
+          rmse,
+          milliseconds: milliseconds[name],
+        });
       drawPixels(
         pictures[name].element,
         toPixels(means(s.estimators[name]), size, inputs.exposure),
@@ -133,6 +213,9 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
     );
     const samples = s.estimators.hero.samples;
     const done = samples >= inputs.target;
+    // The stage line says what the pictures are, as the other accumulating widgets do
+    // (volume-path-tracer: "64 spp, done"); the base appends "· accumulating" meanwhile.
+    const pictureText = `${size}×${size} pixels, reference ${s.reference.samples}`;
     return {
       inputs,
       size,
@@ -142,8 +225,15 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
       milliseconds,
       frameMilliseconds,
       timing,
+      errors: {
+        oneChannel: [...s.errors.oneChannel],
+        hero: [...s.errors.hero],
+        spectral: [...s.errors.spectral],
+      },
       refinement: {
-        label: done ? 'full' : `Accumulating: ${samples} of ${inputs.target} samples per pixel`,
+        label: done
+          ? `${samples} samples per pixel each, done (${pictureText})`
+          : `${samples} of ${inputs.target} samples per pixel each (${pictureText})`,
         pending: done ? null : 'background',
       },
     };
@@ -175,6 +265,27 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
         row.appendChild(figure);
       }
       stage.appendChild(row);
+
+      plotHint = document.createElement('p');
+      plotHint.className = 'sb-sweep-hint';
+      plotHint.textContent =
+        'The error plot fills in as the passes accumulate (from 2 samples per pixel): the RMS error of each estimator against the reference, against its accumulated time, on log–log axes.';
+      plotArea = createPlotArea(
+        'Log–log plot of the RMS error against the reference of one channel at a time, hero wavelength and spectral tracking, against accumulated time',
+      );
+      plotArea.classList.add('sb-chromatic-plot');
+      plotArea.hidden = true;
+      stage.append(plotHint, plotArea);
+      plot = new LinePlot(plotArea, {
+        xLabel: 'log₁₀ accumulated time (ms)',
+        yLabel: 'RMS error',
+        yLog: true,
+        height: 220,
+      });
+    },
+    destroy() {
+      plot?.destroy();
+      plot = null;
     },
     createRenderer: (gpu) => new ChromaticGpu(gpu),
     async renderGpu(renderer, _gpu, request) {
@@ -193,6 +304,7 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
     },
     refinement: (f) => f.refinement,
     show(f) {
+      plotErrors(f.errors);
       for (const name of ESTIMATORS) {
         const s = f.stats[name];
         pictures[name].element.setAttribute(

@@ -5,11 +5,12 @@
 // each accumulating samples progressively. Readouts per estimator: time, per-channel
 // standard error, colour noise, error against a reference picture (the one-channel
 // estimator with REFERENCE_FACTOR× the samples, independent streams) and variance × time,
-// with the winner of each measure named. Without WebGPU the float64 twin renders a
+// with the winner of each measure named, and a log–log plot of error against time. Without WebGPU the float64 twin renders a
 // smaller picture in the compute worker.
 import { defineWidget, type ReadoutValue } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import type { Refinement } from '../base/refinement.ts';
+import type { SweepPoint } from '../base/sweep.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import { CHROMATIC_MEDIA } from './schema.ts';
 import {
@@ -32,6 +33,8 @@ export interface ChromaticFrame {
   /** This frame's time (all passes of the frame). */
   frameMilliseconds: number;
   timing: GpuTiming | 'cpu';
+  /** Each estimator's RMS error against the reference after each pass so far (the plot). */
+  errors: Record<EstimatorName, SweepPoint[]>;
   refinement: Refinement;
 }
 
