@@ -1,6 +1,6 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,widgets,scenes,peers,photons,grading,pages,interaction
+// --only=core,transmittance,estimators,subsurface,translucent,room,widgets,scenes,peers,photons,grading,pages,interaction
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
 // and --only-widgets=a,b, see bench/interaction.ts).
@@ -17,6 +17,7 @@ import { benchPhotons } from './photons.ts';
 import { benchScenes } from './scenes.ts';
 import { benchSubsurface } from './subsurface.ts';
 import { benchTranslucent } from './translucent.ts';
+import { benchTranslucentRoom } from './translucentRoom.ts';
 import { benchTransmittance } from './transmittance.ts';
 import { benchWidgets } from './widgets.ts';
 import { printTable, saveTables, type BenchTable } from './table.ts';
@@ -59,6 +60,26 @@ if (wanted('translucent'))
       spp: quick ? 64 : 1024,
       sppPerBatch: quick ? 16 : 32,
       repeats: quick ? 3 : 9,
+    })),
+  );
+if (wanted('room'))
+  tables.push(
+    ...(await benchTranslucentRoom(device, {
+      size: quick ? 24 : 32,
+      referenceSpp: quick ? 64 : 256,
+      dipoleSpp: quick ? 16 : 32,
+      batch: quick ? 16 : 32,
+      samples: 1024,
+      rays: 64,
+      passes: 1,
+      cases: [
+        { material: 'skin1', radius: 5, walls: 0 },
+        { material: 'skin1', radius: 5, walls: 2 },
+        { material: 'marble', radius: 5, walls: 0 },
+        { material: 'wholemilk', radius: 5, walls: 0 },
+        { material: 'ketchup', radius: 5, walls: 0 },
+        { material: 'skin1', radius: 1, walls: 0 },
+      ],
     })),
   );
 if (wanted('grading')) tables.push(await benchGrading(device, { repeats: quick ? 3 : 9 }));

@@ -47,12 +47,14 @@ export interface RoomScene {
 /** The room is this many sphere radii across, half-side: the sphere fills 40 % of its width. */
 export const ROOM_SCALE = 2.5;
 /** The emitter's half-side as a fraction of the room's. */
-export const LIGHT_FRACTION = 0.3;
+export const LIGHT_FRACTION = 0.5;
 /**
- * L_e: chosen so that the emitter's irradiance at the floor's centre, L_e A/(2h)² roughly, is
- * about π, and a white floor's radiance there about its albedo.
+ * L_e: the emitter's irradiance at the floor's centre is π L_e F, F ≈ 0.22 the form factor of
+ * the emitter seen from there (half-side h/2 at distance 2h), so L_e = 12 puts a white floor's
+ * radiance there near 0.6. The emitter is large (a quarter of the ceiling) because the
+ * reference can reach it from inside the sphere only by chance, after the refraction out.
  */
-export const EMISSION = 35;
+export const EMISSION = 12;
 /** Cap on scattering events of one walk inside the sphere, and on surface events of a path. */
 export const WALK_CAP = 100000;
 export const SURFACE_CAP = 64;
@@ -401,7 +403,8 @@ export function roomDipoleCpu(
 
 /**
  * Twin of irradianceMain: n irradiance samples with `rays` rays each, the sphere seen by the
- * room's paths through the dipole from `previous` (zeros: black). 12 floats per sample.
+ * room's paths through the dipole from `previous` (empty: only its mirror reflection).
+ * 12 floats per sample.
  */
 export function roomIrradianceCpu(
   scene: RoomScene,

@@ -52,7 +52,7 @@ export class RoomKernels {
 
   /**
    * Pass 1: `count` irradiance samples, `rays` rays each; paths that come back to the sphere
-   * see the dipole from `previous` (same count, 12 floats each; zeros on the first pass).
+   * see the dipole from `previous` (12 floats a sample; empty: only its mirror reflection).
    */
   async irradiance(
     scene: RoomScene,
@@ -62,14 +62,19 @@ export class RoomKernels {
     previous: Float32Array,
   ): Promise<IrradiancePass> {
     const code = await linkLibraryKernel(this.library, 'kernels/translucent-room-dipole.wesl');
-    const input = new Uint32Array(previous.buffer.slice(0), previous.byteOffset, previous.length);
+    // A storage binding cannot be empty: one zero sample stands in, with a count of 0.
+    const given = previous.length > 0 ? previous : new Float32Array(SAMPLE_FLOATS);
+    const input = new Uint32Array(given.buffer.slice(0), given.byteOffset, given.length);
     const result = await runCompute(this.device, {
       code,
       entryPoint: 'irradianceMain',
       inputs: [input],
       outputWords: SAMPLE_FLOATS * count,
       workgroups: [Math.ceil(count / 64), 1],
-      uniforms: packRoomParams(scene, { count: rays, seed, samples: count }),
+      uniforms: packRoomParams(
+        { ...scene, size: previous.length / SAMPLE_FLOATS },
+        { count: rays, seed, samples: count },
+      ),
     });
     return {
       samples: Float32Array.from(floats(result.output)),

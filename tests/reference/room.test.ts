@@ -89,7 +89,7 @@ describe('the irradiance pass (twin)', () => {
   it('with black walls E is the emitter’s direct light through Fresnel, as a quadrature gives', () => {
     const scene = roomScene(findMaterial('skin1')!, 2, 2, 8);
     const count = 16;
-    const rays = 4000;
+    const rays = 40000;
     const samples = roomIrradianceCpu(
       scene,
       count,
@@ -122,7 +122,7 @@ describe('the irradiance pass (twin)', () => {
       expect(samples[o + 8]).toBeCloseTo(e, 6);
       expect(samples[o + 6]).toBeCloseTo(e, 6);
       if (exact === 0) expect(e).toBe(0);
-      else expect(Math.abs(e / exact - 1)).toBeLessThan(0.05);
+      else expect(Math.abs(e / exact - 1), `sample ${i}: ${e} vs ${exact}`).toBeLessThan(0.03);
     }
   });
 });

@@ -61,8 +61,9 @@ describe('translucent-room kernels vs their twins', () => {
     const scene = roomScene(skin, 2, 0, 8);
     const count = 64;
     const zeros = new Float32Array(SAMPLE_FLOATS * count);
-    const gpu = await kernels.irradiance(scene, count, 64, 5, zeros);
-    const cpu = roomIrradianceCpu(scene, count, 64, 5, zeros);
+    const none = new Float32Array(0);
+    const gpu = await kernels.irradiance(scene, count, 64, 5, none);
+    const cpu = roomIrradianceCpu(scene, count, 64, 5, none);
     // Positions and areas are deterministic (the lattice to WGSL sin/cos, 2⁻¹¹ of R); ΣΔA E
     // agrees within its noise (a few per cent).
     let gpuPower = 0;
@@ -82,6 +83,18 @@ describe('translucent-room kernels vs their twins', () => {
     const share = indirectShare(gpu.samples);
     expect(share.all).toBeGreaterThan(0.05);
     expect(share.all).toBeLessThan(0.9);
+
+    // A second pass fed with the first's samples follows the same paths (the gather draws no
+    // random numbers) and adds the sphere's light where they meet it: E can only grow.
+    const second = await kernels.irradiance(scene, count, 64, 5, gpu.samples);
+    let added = 0;
+    for (let i = 0; i < count; i++)
+      for (let c = 0; c < 3; c++) {
+        const o = SAMPLE_FLOATS * i + 4 + c;
+        expect(second.samples[o]!).toBeGreaterThanOrEqual(gpu.samples[o]! * (1 - 1e-5));
+        added += second.samples[o]! - gpu.samples[o]!;
+      }
+    expect(added).toBeGreaterThan(0);
 
     const black = roomScene(skin, 2, 2, 8);
     const blackPass = await kernels.irradiance(black, count, 16, 5, zeros);
