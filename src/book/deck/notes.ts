@@ -183,4 +183,9 @@ export const SPEAKER_NOTES: Readonly<Record<SlideKey, string>> = {
     'Three images of the same skin sphere: Lambert, dipole BSSRDF by the Jensen–Buhler octree gather, and ' +
     'the path-traced reference. Point past the terminator: light bleeds only with the BSSRDF and the path ' +
     'tracer. Drag ε and point at “Nodes visited per pixel” and the BSSRDF error.',
+  'translucent-room/A translucent sphere in a lit room: path tracing vs the dipole':
+    'The skin sphere in a small Cornell box: volumetric path tracing through its boundary on the left, ' +
+    'the dipole fed by path-traced irradiance on the right. Point at the share of light from the walls ' +
+    '(about 44%), then switch the walls to black: the dipole is still half as bright as the path tracer, ' +
+    'because the camera sees the sphere beyond the terminator of the ceiling light.',
 };
