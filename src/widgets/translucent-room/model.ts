@@ -27,9 +27,9 @@ export function sceneFromValues(values: ParameterValues): RoomScene {
 }
 
 /**
- * Irradiance samples and rays per sample of pass 1 on each backend. 1024 samples put about 30
- * on a pixel-sized patch of the default sphere's visible half at 64² pixels; the CPU fallback
- * uses fewer (its picture is 24² pixels).
+ * Irradiance samples and rays per sample of pass 1 on each backend. 1024 samples on the 5 mm
+ * default sphere own 0.31 mm² each, about 0.55 mm apart, below the mean free paths
+ * 1/σt' of 0.7 to 1.3 mm of Skin 1; the CPU fallback uses fewer (its picture is 24² pixels).
  */
 export const IRRADIANCE = {
   gpu: { samples: 1024, rays: 64 },

@@ -58,7 +58,9 @@ export const TRANSLUCENT_ROOM: WidgetEntry = {
       min: 1,
       max: 12,
       step: 1,
-      default: 8,
+      // 64: on a CPU implementation of WebGPU (SwiftShader) one dipole sample per pixel of
+      // the default picture takes seconds, because every sphere hit sums over all samples.
+      default: 6,
       description:
         'How many samples per pixel each picture accumulates before it stops (the reference traces one path per colour channel per sample).',
     },
@@ -71,7 +73,7 @@ export const TRANSLUCENT_ROOM: WidgetEntry = {
       min: 16,
       max: 128,
       step: 8,
-      default: 64,
+      default: 48,
       description: 'Width and height of each picture in pixels.',
     },
     {

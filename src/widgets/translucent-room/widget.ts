@@ -84,7 +84,7 @@ export const widget = defineWidget<RoomFrame>({
   slides: [
     {
       title: 'A translucent sphere in a lit room: path tracing vs the dipole',
-      attributes: { material: 'skin1', radius: '5', size: '64' },
+      attributes: { material: 'skin1', radius: '5', size: '48' },
       caption:
         'A skin sphere between a red and a green wall. Left, volumetric path tracing through its boundary; right, the dipole BSSRDF fed by irradiance that path tracing of the room computed. Both see the walls’ colour; switch the walls to black to see how much of the sphere’s light was indirect, and shrink the sphere to watch the dipole’s error grow.',
       chapter: '12-beyond-the-lecture',
