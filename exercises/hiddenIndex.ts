@@ -13,4 +13,5 @@ export const HIDDEN_LOADERS: Record<string, Loader> = {
   'delta-tracking': () => import('./delta-tracking/hidden.ts'),
   'single-scatter-shadow': () => import('./single-scatter-shadow/hidden.ts'),
   'dipole-rd': () => import('./dipole-rd/hidden.ts'),
+  'room-irradiance': () => import('./room-irradiance/hidden.ts'),
 };

@@ -14,6 +14,7 @@ const LOADERS: Record<string, Loader> = {
   'delta-tracking': () => import('./delta-tracking/exercise.ts'),
   'single-scatter-shadow': () => import('./single-scatter-shadow/exercise.ts'),
   'dipole-rd': () => import('./dipole-rd/exercise.ts'),
+  'room-irradiance': () => import('./room-irradiance/exercise.ts'),
 };
 
 /** Ids of all exercises, in book order. */
