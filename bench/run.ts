@@ -1,6 +1,6 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,chromatic,widgets,scenes,peers,photons,grading,pages,interaction,neural
+// --only=core,transmittance,estimators,subsurface,translucent,chromatic,room,widgets,scenes,peers,photons,grading,pages,interaction,neural
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
 // and --only-widgets=a,b, see bench/interaction.ts; `neural` takes --seconds=S and the
@@ -20,6 +20,7 @@ import { benchPhotons } from './photons.ts';
 import { benchScenes } from './scenes.ts';
 import { benchSubsurface } from './subsurface.ts';
 import { benchTranslucent } from './translucent.ts';
+import { benchTranslucentRoom } from './translucentRoom.ts';
 import { benchTransmittance } from './transmittance.ts';
 import { benchWidgets } from './widgets.ts';
 import { printTable, saveTables, type BenchTable } from './table.ts';
@@ -71,6 +72,26 @@ if (wanted('translucent'))
   );
 if (wanted('chromatic'))
   tables.push(await benchChromatic(device, { spp: quick ? 16 : 64, spreads: [1, 16, 100] }));
+if (wanted('room'))
+  tables.push(
+    ...(await benchTranslucentRoom(device, {
+      size: quick ? 24 : 32,
+      referenceSpp: quick ? 64 : 256,
+      dipoleSpp: quick ? 16 : 32,
+      batch: quick ? 16 : 32,
+      samples: 1024,
+      rays: 64,
+      passes: 1,
+      cases: [
+        { material: 'skin1', radius: 5, walls: 0 },
+        { material: 'skin1', radius: 5, walls: 2 },
+        { material: 'marble', radius: 5, walls: 0 },
+        { material: 'wholemilk', radius: 5, walls: 0 },
+        { material: 'ketchup', radius: 5, walls: 0 },
+        { material: 'skin1', radius: 1, walls: 0 },
+      ],
+    })),
+  );
 if (wanted('grading')) tables.push(await benchGrading(device, { repeats: quick ? 3 : 9 }));
 if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
 if (wanted('pages')) tables.push(...(await benchPages({ dist, repeats: quick ? 1 : 3 })));

@@ -16,4 +16,5 @@ export const HIDDEN_LOADERS: Record<string, Loader> = {
   'dipole-rd': () => import('./dipole-rd/hidden.ts'),
   'hero-weight': () => import('./hero-weight/hidden.ts'),
   'null-scattering': () => import('./null-scattering/hidden.ts'),
+  'room-irradiance': () => import('./room-irradiance/hidden.ts'),
 };

@@ -17,6 +17,7 @@ const LOADERS: Record<string, Loader> = {
   'dipole-rd': () => import('./dipole-rd/exercise.ts'),
   'hero-weight': () => import('./hero-weight/exercise.ts'),
   'null-scattering': () => import('./null-scattering/exercise.ts'),
+  'room-irradiance': () => import('./room-irradiance/exercise.ts'),
 };
 
 /** Ids of all exercises, in book order. */

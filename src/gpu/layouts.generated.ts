@@ -384,6 +384,21 @@ const TranslucentParams = /* @__PURE__ */ struct('TranslucentParams', 112, 16, {
   lightU: [80, vec4f],
   lightV: [96, vec4f],
 });
+const RoomParams = /* @__PURE__ */ struct('RoomParams', 80, 16, {
+  size: [0, u32],
+  count: [4, u32],
+  seed: [8, u32],
+  offset: [12, u32],
+  radius: [16, f32],
+  halfSize: [20, f32],
+  eta: [24, f32],
+  walls: [28, u32],
+  sigmaSPrime: [32, vec4f],
+  sigmaA: [48, vec4f],
+  samples: [64, u32],
+  maxBounces: [68, u32],
+  surfaceBounces: [72, u32],
+});
 const VreRayParams = /* @__PURE__ */ struct('VreRayParams', 48, 4, {
   sigma: [0, f32],
   albedo: [4, f32],
@@ -472,6 +487,12 @@ export const translucentGatherKernel = { TranslucentParams: TranslucentParams };
 /** Bound structs of kernels/translucent-path.wesl. */
 export const translucentPathKernel = { TranslucentParams: TranslucentParams };
 
+/** Bound structs of kernels/translucent-room-dipole.wesl. */
+export const translucentRoomDipoleKernel = { RoomParams: RoomParams };
+
+/** Bound structs of kernels/translucent-room-path.wesl. */
+export const translucentRoomPathKernel = { RoomParams: RoomParams };
+
 /** Bound structs of kernels/vre-ray.wesl. */
 export const vreRayKernel = { VreRayParams: VreRayParams };
 
@@ -497,5 +518,7 @@ export const KERNEL_LAYOUTS = {
   'kernels/translucent-diffuse.wesl': translucentDiffuseKernel,
   'kernels/translucent-gather.wesl': translucentGatherKernel,
   'kernels/translucent-path.wesl': translucentPathKernel,
+  'kernels/translucent-room-dipole.wesl': translucentRoomDipoleKernel,
+  'kernels/translucent-room-path.wesl': translucentRoomPathKernel,
   'kernels/vre-ray.wesl': vreRayKernel,
 } as const;

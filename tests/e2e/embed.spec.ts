@@ -23,6 +23,7 @@ const NON_DEFAULT: Readonly<Record<string, readonly [string, string] | null>> = 
   'delta-tracking': ['majorant', 'low'],
   'dipole-profile': ['material', 'ketchup'],
   'translucent-render': ['exposure', '5'],
+  'translucent-room': ['walls', 'black'],
   'inverse-render': ['novel', '200'],
   'transfer-function': ['azimuth', '-120'],
   'single-scatter': ['sigma-s', '3'],
@@ -46,6 +47,8 @@ const CHEAPER: Readonly<Record<string, Readonly<Record<string, string>>>> = {
   'photon-map': { photons: '4096' },
   // 32×32 pictures instead of 64×64, and a path-traced target of 2⁶ spp instead of 2¹⁰.
   'translucent-render': { size: '32', spp: '6' },
+  // 16×16 pictures of 4 samples per pixel instead of 64×64 of 256.
+  'translucent-room': { size: '16', spp: '2' },
   // One sample per pixel per frame instead of four.
   'volume-path-tracer': { spp: '1' },
   // Half the ray-marching steps.

@@ -21,6 +21,7 @@ describe('grade --self-test', () => {
       'dipole-rd',
       'hero-weight',
       'null-scattering',
+      'room-irradiance',
     ])
       expect(EXERCISE_IDS).toContain(id);
   });

@@ -193,4 +193,9 @@ export const SPEAKER_NOTES: Readonly<Record<SlideKey, string>> = {
     'Spread 1: all channels alike. Point at “Colour noise”: exactly 0 for hero wavelength and spectral ' +
     'tracking, because one walk serves all channels; one channel at a time shows coloured speckle and takes ' +
     'about 2.6× as long. The winner row names hero wavelength for variance × time.',
+  'translucent-room/A translucent sphere in a lit room: path tracing vs the dipole':
+    'The skin sphere in a small Cornell box: volumetric path tracing through its boundary on the left, ' +
+    'the dipole fed by path-traced irradiance on the right. Point at the share of light from the walls ' +
+    '(about 44%), then switch the walls to black: the dipole is still half as bright as the path tracer, ' +
+    'because the camera sees the sphere beyond the terminator of the ceiling light.',
 };

@@ -1,0 +1,304 @@
+// The drawing of <sb-translucent-room>: the path-traced reference and the dipole picture side
+// by side. A frame runs pass 1 of the dipole method (the irradiance samples, twice) and one
+// sample per pixel of each picture; both then accumulate on their own schedule (steps of about
+// STEP_BUDGET_MS, yielding between) up to the chosen samples per pixel, and write their rows
+// and the error row themselves; the frame's rows are widget.ts's.
+import type { GpuContext } from '../../gpu/device.ts';
+import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
+import { PathAccumulator, type PathBatch } from '../../subsurface/translucentKernels.ts';
+import { indirectShare, sphereMask, type RoomScene } from '../../subsurface/translucentRoom.ts';
+import { RoomKernels } from '../../subsurface/translucentRoomKernels.ts';
+import { workerJobs } from '../../workers/compute.ts';
+import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import { imageFigure, imagePanel } from '../base/imagePanel.ts';
+import type { FrameRequest } from '../base/refinement.ts';
+import { timingLabel, type GpuTiming } from '../base/timing.ts';
+import type { ViewContext, WidgetView } from '../base/view.ts';
+import { paintImage } from '../translucent-render/model.ts';
+import type { jobs as roomJobTable } from './jobs.ts';
+import {
+  dipoleError,
+  IRRADIANCE,
+  IRRADIANCE_PASSES,
+  pictureKey,
+  sceneFromValues,
+} from './model.ts';
+import type { RoomFrame } from './widget.ts';
+
+/** A progressive step aims at this much GPU time per picture. */
+const STEP_BUDGET_MS = 100;
+/** The CPU fallback's image side and samples per pixel. */
+const CPU_SIZE = 24;
+const CPU_SPP = 4;
+
+const roomJobs = workerJobs<typeof roomJobTable>('translucent-room');
+
+interface Pictures {
+  key: string;
+  scene: RoomScene;
+  samples: Float32Array;
+  irradianceMs: number;
+  timing: string;
+  reference: PathAccumulator;
+  dipole: PathAccumulator;
+  target: number;
+  seed: number;
+}
+
+export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFrame, RoomKernels> {
+  const canvas = (label: string) => context.canvas({ width: 64, height: 64, label });
+  const canvases = [
+    canvas('The translucent sphere in the room by volumetric path tracing (reference)'),
+    canvas('The translucent sphere in the room with the dipole BSSRDF'),
+  ] as const;
+  const set = (key: string, text: string, state?: 'ok' | 'bad'): void =>
+    context.setReadout(key, text, state);
+  let status: HTMLElement | null = null;
+  let pictures: Pictures | null = null;
+  let token = 0;
+  let running = false;
+
+  const cancel = (why: string): void => {
+    token += 1;
+    if (running && status) status.textContent = `Accumulation ${why}.`;
+    running = false;
+    context.host.toggleAttribute('data-accumulating', false);
+  };
+
+  /** Paints both pictures and writes every row that changes as they accumulate. */
+  const show = (): void => {
+    const p = pictures;
+    if (!p) return;
+    const exposure = Number(context.values['exposure']);
+    const mask = sphereMask(p.scene);
+    const reference = p.reference.mean();
+    const referenceSe = p.reference.standardError();
+    paintImage(canvases[0].element, reference, p.scene.size, exposure);
+    paintImage(canvases[1].element, p.dipole.mean(), p.scene.size, exposure);
+    const timing = (t: string): string => (t ? timingLabel(t as GpuTiming) : timingLabel('cpu'));
+    set('path-spp', `${p.reference.samples} of ${p.target}`);
+    set('path-time', `${formatMilliseconds(p.reference.milliseconds)} (${timing(p.timing)})`);
+    set('dipole-spp', `${p.dipole.samples} of ${p.target}`);
+    set(
+      'dipole-time',
+      `${formatMilliseconds(p.irradianceMs + p.dipole.milliseconds)} = ${formatMilliseconds(p.irradianceMs)} + ${formatMilliseconds(p.dipole.milliseconds)}`,
+    );
+    let squares = 0;
+    let sum = 0;
+    let n = 0;
+    mask.forEach((inside, q) => {
+      if (!inside) return;
+      for (let c = 0; c < 3; c++) {
+        const se = referenceSe[3 * q + c]!;
+        squares += Number.isFinite(se) ? se * se : 0;
+        sum += reference[3 * q + c]!;
+        n += 1;
+      }
+    });
+    set(
+      'path-se',
+      p.reference.samples > 1 && n > 0
+        ? `${formatNumber((100 * Math.sqrt(squares / n)) / (sum / n), 3)}% of the mean`
+        : '—',
+    );
+    if (p.reference.samples < 2 || p.dipole.samples < 2 || n === 0) {
+      set(
+        'dipole-error',
+        n === 0 ? '— (no pixel lies wholly on the sphere)' : '— (after two samples per pixel)',
+      );
+    } else {
+      const e = dipoleError(
+        p.dipole.mean(),
+        p.dipole.standardError(),
+        reference,
+        referenceSe,
+        mask,
+      );
+      const sign = e.meanError >= 0 ? '+' : '−';
+      const mean = `${sign}${formatNumber(Math.abs(100 * e.meanError), 3)}%`;
+      const noise = `±${formatNumber(100 * e.referenceNoise, 2)}%`;
+      set(
+        'dipole-error',
+        e.belowNoise
+          ? `below the noise (${noise}) · ${mean}`
+          : `${e.referenceNoise > e.relativeRmse / 4 ? '≈ ' : ''}${formatNumber(100 * e.relativeRmse, 3)}% · ${mean} (noise ${noise})`,
+      );
+      context.host.dataset['dipoleError'] = String(e.relativeRmse);
+    }
+    const capped = p.reference.capped + p.dipole.capped;
+    set('capped', String(capped), capped > 0 ? 'bad' : 'ok');
+    context.host.dataset['referenceSpp'] = String(p.reference.samples);
+    context.host.dataset['dipoleSpp'] = String(p.dipole.samples);
+  };
+
+  /** Accumulates both pictures up to the target, alternating steps of about STEP_BUDGET_MS. */
+  const accumulate = async (): Promise<void> => {
+    const job = pictures;
+    if (!job || running) return;
+    const backend = await context.backend();
+    if (backend.kind !== 'gpu') return;
+    const mine = ++token;
+    const current = (): boolean => mine === token && job === pictures && !context.signal.aborted;
+    running = true;
+    context.host.toggleAttribute('data-accumulating', true);
+    const perStep = { reference: 1, dipole: 1 };
+    const step = async (which: 'reference' | 'dipole'): Promise<void> => {
+      const acc = job[which];
+      const samples = Math.min(perStep[which], job.target - acc.samples);
+      if (samples <= 0) return;
+      const options = {
+        samples,
+        offset: acc.samples,
+        seed: which === 'reference' ? job.seed : job.seed + 1,
+      };
+      const batch: PathBatch =
+        which === 'reference'
+          ? await backend.renderer.pathBatch(job.scene, options)
+          : await backend.renderer.dipoleBatch(job.scene, job.samples, options);
+      if (!current()) return;
+      acc.add(batch);
+      if (which === 'reference') job.timing = batch.timing;
+      const perSample = batch.milliseconds / samples;
+      perStep[which] = Math.max(
+        1,
+        Math.min(256, Math.floor(STEP_BUDGET_MS / Math.max(perSample, 1e-3))),
+      );
+    };
+    try {
+      while (job.reference.samples < job.target || job.dipole.samples < job.target) {
+        await step('reference');
+        if (!current()) return;
+        await step('dipole');
+        if (!current()) return;
+        if (status)
+          status.textContent = `Accumulating: ${job.reference.samples} and ${job.dipole.samples} of ${job.target} samples per pixel…`;
+        show();
+        await new Promise((resolve) => setTimeout(resolve, 0));
+      }
+      if (status) status.textContent = `Done: ${job.target} samples per pixel in each picture.`;
+    } catch (error) {
+      if (status)
+        status.textContent = `Accumulation failed: ${error instanceof Error ? error.message : String(error)}`;
+    } finally {
+      if (mine === token) {
+        running = false;
+        context.host.toggleAttribute('data-accumulating', false);
+      }
+    }
+  };
+
+  const frameOf = (
+    p: Pictures,
+    timing: GpuTiming | 'cpu',
+    sizes: { samples: number; rays: number },
+  ): RoomFrame => ({
+    size: p.scene.size,
+    samples: sizes.samples,
+    rays: sizes.rays,
+    irradiance: { milliseconds: p.irradianceMs, timing },
+    indirect: indirectShare(p.samples),
+  });
+
+  return {
+    get cpuNotice() {
+      return `Showing the float64 twins of both pictures at ${CPU_SIZE}² pixels with ${CPU_SPP} samples per pixel (in a worker); WebGPU accumulates many more.`;
+    },
+    build(stage) {
+      const left = imagePanel(canvases[0].element, 'Volumetric path tracing (reference)');
+      const right = imagePanel(canvases[1].element, 'Dipole BSSRDF under the room’s light');
+      stage.appendChild(imageFigure(left.panel, right.panel));
+      status = document.createElement('p');
+      status.className = 'sb-tr-status';
+      status.setAttribute('role', 'status');
+      stage.appendChild(status);
+    },
+    createRenderer: (gpu: GpuContext) => new RoomKernels(gpu.device, STATIC_KERNELS),
+    async renderGpu(renderer, _gpu, request: FrameRequest) {
+      const key = pictureKey(context.values);
+      const target = 2 ** Number(context.values['spp']);
+      if (pictures?.key !== key) {
+        cancel('restarted');
+        const scene = sceneFromValues(context.values);
+        const seed = Number(context.values['seed']);
+        const { samples: count, rays } = IRRADIANCE.gpu;
+        let samples: Float32Array = new Float32Array(0);
+        let irradianceMs = 0;
+        let timing = '';
+        for (let pass = 0; pass < IRRADIANCE_PASSES; pass++) {
+          const r = await renderer.irradiance(scene, count, rays, seed + 2 + pass, samples);
+          samples = r.samples;
+          irradianceMs += r.milliseconds;
+          timing = r.timing;
+        }
+        if (request.signal?.aborted) return null;
+        const pixels = scene.size * scene.size;
+        const next: Pictures = {
+          key,
+          scene,
+          samples,
+          irradianceMs,
+          timing,
+          reference: new PathAccumulator(pixels),
+          dipole: new PathAccumulator(pixels),
+          target,
+          seed,
+        };
+        // One sample per pixel of each before the frame is reported, so both are on screen.
+        next.reference.add(await renderer.pathBatch(scene, { samples: 1, offset: 0, seed }));
+        next.dipole.add(
+          await renderer.dipoleBatch(scene, samples, { samples: 1, offset: 0, seed: seed + 1 }),
+        );
+        pictures = next;
+      }
+      const p = pictures;
+      p.target = target;
+      show();
+      if (!running && (p.reference.samples < target || p.dipole.samples < target))
+        void accumulate();
+      return frameOf(p, p.timing as GpuTiming, IRRADIANCE.gpu);
+    },
+    async renderCpu(request: FrameRequest) {
+      cancel('stopped');
+      const scene = { ...sceneFromValues(context.values), size: CPU_SIZE };
+      const seed = Number(context.values['seed']);
+      const drawn = await roomJobs.run('pictures', [scene, CPU_SPP, seed], {
+        signal: request.signal,
+      });
+      const pixels = scene.size * scene.size;
+      const reference = new PathAccumulator(pixels);
+      reference.add({
+        sums: drawn.reference,
+        samples: drawn.spp,
+        milliseconds: drawn.referenceMs,
+        timing: 'cpu',
+      });
+      const dipole = new PathAccumulator(pixels);
+      dipole.add({
+        sums: drawn.dipole,
+        samples: drawn.spp,
+        milliseconds: drawn.dipoleMs,
+        timing: 'cpu',
+      });
+      pictures = {
+        key: `cpu|${pictureKey(context.values)}`,
+        scene,
+        samples: drawn.samples,
+        irradianceMs: drawn.irradianceMs,
+        timing: '',
+        reference,
+        dipole,
+        target: drawn.spp,
+        seed,
+      };
+      show();
+      return frameOf(pictures, 'cpu', IRRADIANCE.cpu);
+    },
+    onCpuFallback() {
+      cancel('stopped: the GPU was lost');
+      pictures = null;
+    },
+    destroy() {
+      cancel('stopped');
+    },
+  };
+}
