@@ -2,18 +2,12 @@
 // interface (FrameRenderer): the GPU kernel (gpuBackend.ts, bands read back into
 // the full image) and, without WebGPU, the float64 twin in model.ts at
 // CPU_SIZE² pixels. Also the painting of images into 2D canvases.
-import { TimeSlicer } from '../base/refinement.ts';
+import { cacheKey, workerJobs, type WorkerJobs } from '../../workers/compute.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import type { Rgb } from '../base/imagePanel.ts';
 import type { VolumeRendererGpu } from './gpuBackend.ts';
-import {
-  CPU_SIZE,
-  emptyImage,
-  IMAGE_SIZE,
-  renderRowsCpu,
-  type FrameInputs,
-  type VolumeImage,
-} from './model.ts';
+import { rowsScene, type jobs as rowJobs, type RowsBand } from './jobs.ts';
+import { CPU_SIZE, emptyImage, IMAGE_SIZE, type FrameInputs, type VolumeImage } from './model.ts';
 
 export interface RowsCost {
   milliseconds: number;
@@ -36,10 +30,40 @@ export interface FrameRenderer {
     threshold: number,
     rowStart: number,
     rowEnd: number,
+    /** An input: a CPU renderer drops the rows not yet marched and rejects (AbortError). */
+    signal?: AbortSignal,
+    /** March again even where the same rows were marched before (a timing, not a picture). */
+    fresh?: boolean,
   ): Promise<RowsCost>;
 }
 
-/** The float64 twin on the CPU at CPU_SIZE² pixels (or a preview's fewer), timed by the wall clock. */
+/**
+ * Rows per job of the CPU twin: ⌊8·Δs⌋ rows (1 to 16), about the same marching per
+ * job whatever the step (≈ 8 × 64 rays of ~150 steps at Δs = 1 voxel, one row of
+ * ~1200 steps for the ⅛-voxel reference), so that the one worker is never held long
+ * by a stale job: an input drops the chunks not yet started, and the next picture
+ * waits for one chunk at most.
+ */
+export function chunkRows(stepVoxels: number): number {
+  return Math.min(16, Math.max(1, Math.floor(8 * stepVoxels)));
+}
+
+/**
+ * Chunks kept by the worker's cache (LRU): a full frame is 4 to 64 chunks, the
+ * reference 64 rows; a row is 1.5 kB of float64, so a few views' worth is small.
+ */
+const CPU_CACHED_CHUNKS = 256;
+/** Counts the fresh (uncached) runs, for their cache keys. */
+let freshRuns = 0;
+
+/** The compute worker's jobs of this widget (jobs.ts), shared by every CpuRenderer. */
+let cpuJobs: WorkerJobs<typeof rowJobs> | null = null;
+
+/**
+ * The float64 twin at CPU_SIZE² pixels (or a preview's fewer), marched in the compute
+ * worker (jobs.ts) so that the page only copies bands (issue 23: a row of the fine-step
+ * reference held the page for hundreds of ms under load); timed by the worker's clock.
+ */
 export class CpuRenderer implements FrameRenderer {
   readonly kind = 'cpu';
   readonly size = CPU_SIZE;
@@ -49,8 +73,9 @@ export class CpuRenderer implements FrameRenderer {
   }
 
   /**
-   * Row by row, yielding to the page whenever a slice is used up (TimeSlicer), so that no
-   * task is much longer than SLICE_MS; the time is the work's, not the pauses'.
+   * The rows in chunks of chunkRows(Δs), all queued at once so that the worker never
+   * waits on the page; `signal` (an input) rejects with an AbortError and drops the
+   * chunks not yet started. The time is the worker's marching, not the queueing.
    */
   async renderInto(
     image: VolumeImage,
@@ -59,17 +84,64 @@ export class CpuRenderer implements FrameRenderer {
     threshold: number,
     rowStart: number,
     rowEnd: number,
+    signal?: AbortSignal,
+    fresh = false,
   ): Promise<RowsCost> {
-    const slicer = new TimeSlicer();
+    cpuJobs ??= workerJobs<typeof rowJobs>('transfer-function', CPU_CACHED_CHUNKS);
+    const jobs = cpuJobs;
+    const { size } = image;
+    const scene = rowsScene(inputs);
+    const end = Math.min(rowEnd, size);
+    const chunks: Promise<RowsBand>[] = [];
+    const rows = chunkRows(stepVoxels);
+    for (let start = rowStart; start < end; start += rows) {
+      const args = [
+        scene,
+        size,
+        stepVoxels,
+        threshold,
+        start,
+        Math.min(start + rows, end),
+      ] as const;
+      // A cached band would repeat its first timing: a fresh one gets a key of its own.
+      const key = fresh ? `${cacheKey('rows', args)}#${++freshRuns}` : undefined;
+      chunks.push(jobs.run('rows', [...args], { signal, key }));
+    }
+    // All or nothing: an aborted call leaves `image` as it was (the reference resumes by bands).
+    const bands = await Promise.all(chunks);
     let milliseconds = 0;
-    for (let row = rowStart; row < Math.min(rowEnd, image.size); row++) {
-      const start = performance.now();
-      renderRowsCpu(image, inputs, stepVoxels, threshold, row, row + 1);
-      milliseconds += performance.now() - start;
-      await slicer.pause();
+    let start = rowStart;
+    for (const band of bands) {
+      addBand(image, band, start);
+      milliseconds += band.milliseconds;
+      start += band.rows;
     }
     return { milliseconds, how: timingLabel('cpu'), timing: 'cpu' };
   }
+}
+
+/** Copies a band of rows starting at `rowStart` into `image` and adds its statistics. */
+function addBand(
+  image: VolumeImage,
+  band: Omit<RowsBand, 'rgb' | 'stepsPerPixel' | 'plannedPerPixel' | 'milliseconds'> & {
+    rgb: Float32Array | Float64Array;
+    stepsPerPixel: Uint32Array;
+    plannedPerPixel: Uint32Array;
+  },
+  rowStart: number,
+): void {
+  const { size } = image;
+  const pixels = size * size;
+  const bandPixels = band.rows * size;
+  const offset = rowStart * size;
+  for (let c = 0; c < 3; c++)
+    image.rgb.set(band.rgb.subarray(c * bandPixels, (c + 1) * bandPixels), c * pixels + offset);
+  image.stepsPerPixel.set(band.stepsPerPixel, offset);
+  image.plannedPerPixel.set(band.plannedPerPixel, offset);
+  image.steps += band.steps;
+  image.plannedSteps += band.plannedSteps;
+  image.terminatedRays += band.terminatedRays;
+  image.cappedRays += band.cappedRays;
 }
 
 /** The GPU kernel at IMAGE_SIZE² pixels (or a preview's fewer); each call is one dispatch, timed on the GPU. */
@@ -100,17 +172,7 @@ export class GpuRenderer implements FrameRenderer {
       rowStart,
       rowEnd,
     });
-    const pixels = size * size;
-    const bandPixels = band.rows * size;
-    const offset = rowStart * size;
-    for (let c = 0; c < 3; c++)
-      image.rgb.set(band.rgb.subarray(c * bandPixels, (c + 1) * bandPixels), c * pixels + offset);
-    image.stepsPerPixel.set(band.stepsPerPixel, offset);
-    image.plannedPerPixel.set(band.plannedPerPixel, offset);
-    image.steps += band.steps;
-    image.plannedSteps += band.plannedSteps;
-    image.terminatedRays += band.terminatedRays;
-    image.cappedRays += band.cappedRays;
+    addBand(image, band, rowStart);
     return { milliseconds: band.milliseconds, how: timingLabel(band.timing), timing: band.timing };
   }
 }
@@ -122,9 +184,20 @@ export async function renderFrame(
   stepVoxels: number,
   threshold: number,
   size = renderer.size,
+  signal?: AbortSignal,
+  fresh = false,
 ): Promise<{ image: VolumeImage } & RowsCost> {
   const image = renderer.blank(size);
-  const cost = await renderer.renderInto(image, inputs, stepVoxels, threshold, 0, size);
+  const cost = await renderer.renderInto(
+    image,
+    inputs,
+    stepVoxels,
+    threshold,
+    0,
+    size,
+    signal,
+    fresh,
+  );
   return { image, ...cost };
 }
 

@@ -29,6 +29,7 @@ import {
   paintImage,
   renderFrame,
   type FrameRenderer,
+  type RowsCost,
 } from './cpuBackend.ts';
 import { TransferEditor } from './editor.ts';
 import { VolumeRendererGpu } from './gpuBackend.ts';
@@ -80,6 +81,8 @@ interface ReferenceJob {
   /** Stopped by the reader's input rather than cancelled: its bands are kept to resume. */
   paused?: boolean;
   promise: Promise<VolumeImage | null>;
+  /** Aborted with `cancelled`: drops the band's rows still queued in the compute worker. */
+  controller: AbortController;
 }
 
 /** A reference stopped by an input: the bands done, to go on from if its scene is shown again. */
@@ -232,7 +235,10 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       clearTimeout(referenceTimer);
       referenceTimer = null;
     }
-    if (referenceJob) referenceJob.cancelled = true;
+    if (referenceJob) {
+      referenceJob.cancelled = true;
+      referenceJob.controller.abort();
+    }
     referenceJob = null;
     if (byUser) {
       sweep?.cancel('stopped: the reference was cancelled');
@@ -312,7 +318,15 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
     const otherInputs = { ...inputs, termination: !inputs.termination };
     const run = async (which: FrameInputs) => {
       signal.throwIfAborted();
-      return renderFrame(frame.renderer, which, which.step, thresholdOf(which));
+      return renderFrame(
+        frame.renderer,
+        which,
+        which.step,
+        thresholdOf(which),
+        frame.renderer.size,
+        signal,
+        true,
+      );
     };
     void (async () => {
       const first = await run(otherInputs);
@@ -354,14 +368,24 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       }
       setReferenceStatus(`Reference: Δs = ⅛ voxel, band ${band + 1} of ${bands}…`, band / bands);
       set('rmse', `computing the reference… ${Math.round((100 * band) / bands)}%`);
-      const cost = await renderer.renderInto(
-        image,
-        inputs,
-        REFERENCE_STEP_VOXELS,
-        REFERENCE_EPSILON,
-        band * bandRows,
-        (band + 1) * bandRows,
-      );
+      let cost: RowsCost;
+      try {
+        // Aborted by a cancel or an input: nothing of the band is written (renderInto
+        // copies its rows only once all are back), so a resumed reference redoes it.
+        cost = await renderer.renderInto(
+          image,
+          inputs,
+          REFERENCE_STEP_VOXELS,
+          REFERENCE_EPSILON,
+          band * bandRows,
+          (band + 1) * bandRows,
+          job.controller.signal,
+        );
+      } catch (error) {
+        if (!job.cancelled) throw error;
+        if (job.paused) partialReference = { key: job.key, image, band, milliseconds };
+        return null;
+      }
       milliseconds += cost.milliseconds;
       // Let the page breathe between bands: input, painting and Cancel stay live.
       await new Promise((resolve) => setTimeout(resolve, 0));
@@ -386,7 +410,12 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       clearTimeout(referenceTimer);
       referenceTimer = null;
     }
-    const job: ReferenceJob = { key: frame.key, cancelled: false, promise: Promise.resolve(null) };
+    const job: ReferenceJob = {
+      key: frame.key,
+      cancelled: false,
+      promise: Promise.resolve(null),
+      controller: new AbortController(),
+    };
     referenceJob = job;
     job.promise = computeReference(frame, job);
     return job.promise;
@@ -415,6 +444,7 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
           if (!job || referenceJob !== job || job.cancelled) return;
           job.paused = true;
           job.cancelled = true;
+          job.controller.abort();
           referenceJob = null;
         },
         { once: true },
@@ -464,6 +494,7 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       inputs.step,
       thresholdOf(inputs),
       choice.rung.value,
+      request.signal,
     );
     // The latency a reader sees (dispatch, read-back and all), not only the GPU pass.
     ladder.record(choice.index, performance.now() - start);
