@@ -3,7 +3,7 @@
 // with the dipole BSSRDF by Jensen & Buhler's hierarchical integration, and by brute-force
 // volumetric path tracing (the reference), each with its GPU time and error.
 import type { WidgetEntry } from '../parameters.ts';
-import { JENSEN_2001_MATERIALS } from '../../subsurface/materials.ts';
+import { measuredMaterialParameter } from '../base/materialParameter.ts';
 
 export const TRANSLUCENT_RENDER: WidgetEntry = {
   name: 'translucent-render',
@@ -11,18 +11,9 @@ export const TRANSLUCENT_RENDER: WidgetEntry = {
   description:
     'One sphere of a measured material lit by a directional light, rendered as a Lambertian surface with the material’s total diffuse reflectance, with the dipole BSSRDF summed by Jensen and Buhler’s octree over irradiance samples (the threshold ε trades accuracy for time), and by volumetric path tracing as the reference; each with GPU time and error, a view of the irradiance samples and of the octree cut one pixel uses.',
   parameters: [
-    {
-      kind: 'choice',
-      name: 'material',
-      label: 'Material',
-      choices: JENSEN_2001_MATERIALS.map((m) => ({
-        value: m.name,
-        label: `${m.label} (η = ${m.eta})`,
-      })),
-      default: 'skin1',
-      description:
-        'A measured material of Jensen et al. 2001: σs′ and σa per channel in 1/mm, and η.',
-    },
+    measuredMaterialParameter(
+      'A measured material of Jensen et al. 2001: σs′ and σa per channel in 1/mm, and η.',
+    ),
     {
       kind: 'number',
       name: 'radius',

@@ -3,7 +3,7 @@
 // its boundary (the reference) and with the dipole BSSRDF under the room's light, each with
 // its time and the dipole's error against the reference.
 import type { WidgetEntry } from '../parameters.ts';
-import { JENSEN_2001_MATERIALS } from '../../subsurface/materials.ts';
+import { measuredMaterialParameter } from '../base/materialParameter.ts';
 
 export const TRANSLUCENT_ROOM: WidgetEntry = {
   name: 'translucent-room',
@@ -11,18 +11,9 @@ export const TRANSLUCENT_ROOM: WidgetEntry = {
   description:
     'A sphere of a measured material on the floor of a small room with a red and a green wall and a square light in the ceiling. Left, volumetric path tracing: paths bounce between the walls, refract into the sphere, random-walk inside it and leave through its boundary. Right, the dipole BSSRDF summed over irradiance samples that path tracing of the room computed, so the walls’ colour reaches it. Each with its GPU time; the dipole’s error is measured against the path-traced picture on the sphere.',
   parameters: [
-    {
-      kind: 'choice',
-      name: 'material',
-      label: 'Material',
-      choices: JENSEN_2001_MATERIALS.map((m) => ({
-        value: m.name,
-        label: `${m.label} (η = ${m.eta})`,
-      })),
-      default: 'skin1',
-      description:
-        'A measured material of Jensen et al. 2001: σs′ and σa per channel in 1/mm, and η. The path tracer scatters isotropically with σs = σs′.',
-    },
+    measuredMaterialParameter(
+      'A measured material of Jensen et al. 2001: σs′ and σa per channel in 1/mm, and η. The path tracer scatters isotropically with σs = σs′.',
+    ),
     {
       kind: 'number',
       name: 'radius',
