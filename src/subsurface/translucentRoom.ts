@@ -477,3 +477,89 @@ export function indirectShare(samples: ArrayLike<number>): { channels: Vec3; all
     all: share(total[0]! + total[1]! + total[2]!, direct[0]! + direct[1]! + direct[2]!),
   };
 }
+
+/**
+ * The sphere's power budget in the reference's physics, independent of any camera: light
+ * tracing of the emitter's direct light. `photons` photons leave the emitter (area A = 4a²,
+ * radiance L_e, so power Φ = π L_e A) from uniform points in cosine-weighted directions; a
+ * photon that reaches the sphere enters it with probability 1 − F (Fresnel) and then walks as
+ * in walkInside. Per channel: `entered`, the power refracted into the sphere (the light-traced
+ * twin of Σ_i E_i ΔA with black walls) and `left`, the power that comes out through the
+ * boundary again, counted at the crossing. Walls play no part (each photon stops at its first
+ * wall), so the numbers compare with the dipole's budget for the black room.
+ */
+export function roomPowerBudgetCpu(
+  scene: RoomScene,
+  photons: number,
+  seed: number,
+): { entered: Vec3; left: Vec3; leftSquares: Vec3; photons: number } {
+  const c = sphereCentre(scene);
+  const R = scene.radius;
+  const a = scene.lightHalf;
+  const power = Math.PI * scene.emission * 4 * a * a;
+  const entered: Vec3 = [0, 0, 0];
+  const left: Vec3 = [0, 0, 0];
+  const leftSquares: Vec3 = [0, 0, 0];
+  for (let k = 0; k < photons; k++) {
+    const rng = streamOf(k, seed, 0);
+    const y = squareLightPoint(scene.halfSize, a, uniform2(rng));
+    const d: Vec3 = [...sampleCosineHemisphere([0, -1, 0], uniform2(rng))];
+    const hit = raySphereSegment(c, R, y, d, 0, 1e30);
+    if (segmentIsEmpty(hit) || hit[0] >= roomWallHit(scene.halfSize, y, d)[0]) continue;
+    const n = normalize(along(y, hit[0], d).map((x, m) => x - c[m]!));
+    const cosI = Math.max(-dot(d, n), 0);
+    if (rngNextFloat(rng) < fresnelDielectric(cosI, scene.eta)) continue;
+    const inside = refractDirection(d, n, scene.eta);
+    for (let channel = 0; channel < 3; channel++) {
+      entered[channel] = entered[channel]! + power / photons;
+      const walk = walkInside(
+        scene,
+        along(c, R * (1 - 1e-5), n),
+        [inside[0], inside[1], inside[2]],
+        scene.sigmaSPrime[channel]!,
+        scene.sigmaA[channel]!,
+        rng,
+      );
+      const w = (walk.weight * power) / photons;
+      left[channel] = left[channel]! + w;
+      leftSquares[channel] = leftSquares[channel]! + w * w;
+    }
+  }
+  return { entered, left, leftSquares, photons };
+}
+
+/**
+ * The dipole's power budget from irradiance samples: `entered` = Σ_i E_i ΔA, and `left`, the
+ * exitance of eq. room-dipole integrated over the sphere, 4πR² · mean M_o(x) over `points`
+ * uniform random points x (not the samples' own points: there the term i = j, R_d(0) ΔA E_i,
+ * would count a sample's whole neighbourhood at the profile's peak). bssrdfExitFactor is
+ * normalized so that ∫ L_o cos θ dω = M_o, so `left` is the power the dipole sphere sends into
+ * the room; `leftSquares` gives its Monte Carlo error.
+ */
+export function roomDipolePowerBudget(
+  scene: RoomScene,
+  samples: Float32Array,
+  points: number,
+  seed: number,
+): { entered: Vec3; left: Vec3; leftSquares: Vec3 } {
+  const count = samples.length / SAMPLE_FLOATS;
+  const dipoles = dipolesOfRoom(scene);
+  const area = 4 * Math.PI * scene.radius ** 2;
+  const entered: Vec3 = [0, 0, 0];
+  const left: Vec3 = [0, 0, 0];
+  const leftSquares: Vec3 = [0, 0, 0];
+  for (let i = 0; i < count; i++)
+    for (let k = 0; k < 3; k++)
+      entered[k] =
+        entered[k]! + samples[SAMPLE_FLOATS * i + 3]! * samples[SAMPLE_FLOATS * i + 4 + k]!;
+  for (let j = 0; j < points; j++) {
+    const x = sampleUniformSphere(uniform2(streamOf(j, seed, 0))).map((v) => v * scene.radius);
+    const m = roomExitance(samples, count, dipoles, x);
+    for (let k = 0; k < 3; k++) {
+      const w = (area * m[k]!) / points;
+      left[k] = left[k]! + w;
+      leftSquares[k] = leftSquares[k]! + w * w;
+    }
+  }
+  return { entered, left, leftSquares };
+}

@@ -196,6 +196,8 @@ export const SPEAKER_NOTES: Readonly<Record<SlideKey, string>> = {
   'translucent-room/A translucent sphere in a lit room: path tracing vs the dipole':
     'The skin sphere in a small Cornell box: volumetric path tracing through its boundary on the left, ' +
     'the dipole fed by path-traced irradiance on the right. Point at the share of light from the walls ' +
-    '(about 44%), then switch the walls to black: the dipole is still half as bright as the path tracer, ' +
-    'because the camera sees the sphere beyond the terminator of the ceiling light.',
+    '(about 44%), then switch the walls to black: the dipole is still half as bright as the path tracer. ' +
+    'Not a scale bug: both let the same power in, but the dipole gives back only its half-space R_d total ' +
+    '(35% less power than the finite sphere returns), and what it gives back stays near the lit top, ' +
+    'while the camera sees the front near the terminator.',
 };
