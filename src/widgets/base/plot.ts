@@ -86,8 +86,12 @@ export class LinePlot {
     return Math.round(((this.options.height ?? 220) * this.fontSize()) / 16);
   }
 
+  /**
+   * The container's width, but at least 160 px: below that uPlot's axes leave no room for
+   * the curves. (At 240, a plot under a narrow deck stage at 1024×768 cut it sideways.)
+   */
   private width(): number {
-    return Math.max(240, Math.floor(this.container.clientWidth || 480));
+    return Math.max(160, Math.floor(this.container.clientWidth || 480));
   }
 
   /** Draws x against the series; rebuilds the chart only when the series change. */
