@@ -243,18 +243,10 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
     cpuNotice: `Showing the float64 twin at ${CPU_SIZE}×${CPU_SIZE} pixels; the GPU draws ${GPU_SIZE}×${GPU_SIZE}.`,
     build(stage) {
       const row = document.createElement('div');
+      // Two by two, square (the layout is in widgets.css, with the other image widgets').
       row.className = 'sb-chromatic-row';
-      row.style.display = 'grid';
-      // Two by two: each picture gets half the stage's width (64 pixels scaled up, square).
-      row.style.gridTemplateColumns = 'repeat(2, minmax(0, 1fr))';
-      row.style.gap = '0.5rem';
       for (const [name, picture] of Object.entries(pictures)) {
         const figure = document.createElement('figure');
-        figure.style.margin = '0';
-        picture.element.style.width = '100%';
-        picture.element.style.height = 'auto';
-        picture.element.style.aspectRatio = '1 / 1';
-        picture.element.style.imageRendering = 'pixelated';
         figure.appendChild(picture.element);
         const caption = document.createElement('figcaption');
         caption.textContent =
