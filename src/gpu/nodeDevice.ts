@@ -3,8 +3,11 @@
 // the Vulkan ICD that Debian's chromium ships (scripts/gpu-env.sh points
 // VK_ICD_FILENAMES at it). Never imported by browser code.
 import { create, globals } from 'webgpu';
+import { installQuietPolling } from './quietPolling.ts';
 
 Object.assign(globalThis, globals);
+// dawn.node busy-polls pending promises; sleep between polls instead (quietPolling.ts).
+installQuietPolling(globals);
 
 let shared: Promise<GPUDevice> | null = null;
 // The Dawn instance must outlive its devices: if it is garbage-collected while a
