@@ -36,7 +36,33 @@ export function variantKey(kernelPath: string, conditions: LinkConditions = {}):
   return on.length === 0 ? kernelPath : `${kernelPath}?${on.join(',')}`;
 }
 
+/**
+ * Linked WGSL by the library's contents, root source and conditions: two libraries that
+ * differ only in a module the root imports (a benchmark's modified copy, a test's) must
+ * not share a result, and equal libraries loaded twice still do.
+ */
 const cache = new Map<string, Promise<string>>();
+const libraryDigests = new WeakMap<ShaderLibrary, string>();
+
+/** A 53-bit FNV-1a style digest of every module's path and source (once per library object). */
+function libraryDigest(library: ShaderLibrary): string {
+  let digest = libraryDigests.get(library);
+  if (digest === undefined) {
+    let h1 = 0x811c9dc5;
+    let h2 = 0x01000193;
+    for (const path of Object.keys(library).sort()) {
+      const text = `${path}\u0000${library[path]}\u0000`;
+      for (let i = 0; i < text.length; i++) {
+        const c = text.charCodeAt(i);
+        h1 = Math.imul(h1 ^ c, 0x01000193);
+        h2 = Math.imul(h2 ^ c, 0x5bd1e995);
+      }
+    }
+    digest = `${(h1 >>> 0).toString(16)}${(h2 >>> 0).toString(16)}`;
+    libraryDigests.set(library, digest);
+  }
+  return digest;
+}
 
 type Wesl = typeof import('wesl');
 type ModuleResolver = InstanceType<Wesl['RecordResolver']>;
@@ -61,15 +87,15 @@ function libraryResolver(wesl: Wesl, library: ShaderLibrary): ModuleResolver {
 
 /**
  * Returns plain WGSL for `rootSource` (a kernel that imports `package::module::fn`),
- * with every referenced library function and nothing else. Results are cached by
- * source and conditions.
+ * with every referenced library function and nothing else. Results are cached by the
+ * library's contents, the source and the conditions.
  */
 export function linkKernel(
   library: ShaderLibrary,
   rootSource: string,
   conditions: LinkConditions = {},
 ): Promise<string> {
-  const key = `${JSON.stringify(conditions)}\n${rootSource}`;
+  const key = `${libraryDigest(library)}\n${JSON.stringify(conditions)}\n${rootSource}`;
   let linked = cache.get(key);
   if (!linked) {
     linked = import('wesl')

@@ -45,4 +45,23 @@ describe('linked WGSL cached on disk', () => {
     await editedCache.prelinked(KERNEL, PLAN);
     expect(editedCache.misses()).toBe(1);
   });
+
+  it('the in-memory link cache tells apart libraries that differ only in a module the kernel imports', async () => {
+    // Only geometry.wesl differs, so the kernel's own source and the conditions are the
+    // same: a cache keyed by those alone returned the first library's WGSL for both.
+    const original = await linkLibraryKernel(SHADER_LIBRARY, KERNEL, PLAN);
+    const changed = {
+      ...SHADER_LIBRARY,
+      'geometry.wesl': SHADER_LIBRARY['geometry.wesl']!.replace(
+        'const RAY_T_LIMIT: f32 = 1e17;',
+        'const RAY_T_LIMIT: f32 = 2e17;',
+      ),
+    };
+    expect(changed['geometry.wesl']).not.toBe(SHADER_LIBRARY['geometry.wesl']);
+    const relinked = await linkLibraryKernel(changed, KERNEL, PLAN);
+    expect(relinked).toContain('2e17');
+    expect(original).not.toContain('2e17');
+    // Equal contents in another object share the linked result.
+    expect(await linkLibraryKernel({ ...SHADER_LIBRARY }, KERNEL, PLAN)).toBe(original);
+  });
 });
