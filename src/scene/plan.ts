@@ -29,6 +29,7 @@ export const CONDITION_NAMES = [
   'lightEnvironment',
   'equiangular',
   'oneHomogeneousMedium',
+  'oneGridMedium',
 ] as const;
 
 export type ConditionName = (typeof CONDITION_NAMES)[number];
@@ -60,6 +61,7 @@ export const GENERAL_CONDITIONS: Conditions = {
   lightEnvironment: true,
   equiangular: false,
   oneHomogeneousMedium: false,
+  oneGridMedium: false,
 };
 
 export type Integrator = 'emission-absorption' | 'single-scattering' | 'path-tracing';
@@ -125,6 +127,16 @@ export function plan(scene: SceneDescription): Plan {
     !emission &&
     !kinds.has('environment') &&
     (pathTracing || !equiangular);
+  // One grid medium lit by delta lights, path traced: the one-medium path tracer with
+  // ratio-tracked shadow rays (the same random numbers as the general path tracer).
+  const oneGridMedium =
+    pathTracing &&
+    volumeScattering &&
+    media.length === 1 &&
+    media[0]!.type === 'grid' &&
+    !surfaces &&
+    !emission &&
+    !kinds.has('environment');
   const shadowRays = scattering && deltaLights;
 
   const effects: PlanEffect[] = [];
@@ -143,7 +155,9 @@ export function plan(scene: SceneDescription): Plan {
         : 'emission–absorption (no scattering code)') +
       (oneHomogeneousMedium
         ? '; one homogeneous medium under delta lights: the one-medium kernel (no segment lists)'
-        : ''),
+        : oneGridMedium
+          ? '; one grid medium under delta lights: the one-medium path tracer (no segment lists)'
+          : ''),
     integrator === 'path-tracing'
       ? `scattering order ${orderText} ≥ 2 and something scatters`
       : integrator === 'single-scattering'
@@ -306,6 +320,7 @@ export function plan(scene: SceneDescription): Plan {
     lightEnvironment: kinds.has('environment'),
     equiangular,
     oneHomogeneousMedium,
+    oneGridMedium,
   };
   return { integrator, scatteringOrder: order, effects, conditions };
 }

@@ -291,6 +291,40 @@ describe('the planner', () => {
     ).toMatch(/one-medium kernel/);
   });
 
+  it('the one-medium path tracer in a grid: one grid medium under delta lights, path traced', () => {
+    const sun = { type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] };
+    const smoke = (extra: Record<string, unknown> = {}) => ({
+      ...fog(extra),
+      type: 'grid',
+      grid: { dimensions: [2, 2, 2], density: [0, 1, 0.5, 1, 1, 0.25, 1, 0] },
+    });
+    const grid = (json: Record<string, unknown>) =>
+      planOf({ ...base(), media: [smoke()], lights: [sun], scatteringOrder: 'unlimited', ...json })
+        .conditions;
+    expect(grid({})).toMatchObject({ oneGridMedium: true, oneHomogeneousMedium: false });
+    // Single scattering keeps the general estimator (reservoir-chosen collisions).
+    expect(grid({ scatteringOrder: 1 }).oneGridMedium).toBe(false);
+    expect(
+      grid({ lights: [sun, { type: 'environment', radiance: [1, 1, 1] }] }).oneGridMedium,
+    ).toBe(false);
+    expect(grid({ media: [smoke({ emission: [1, 1, 1] })] }).oneGridMedium).toBe(false);
+    expect(
+      grid({
+        media: [smoke(), fog({ bounds: { type: 'box', min: [2, 2, 2], max: [3, 3, 3] } })],
+      }).oneGridMedium,
+    ).toBe(false);
+    expect(
+      grid({ surfaces: [{ type: 'sphere', center: [0, 0, 0], radius: 0.2, albedo: [1, 1, 1] }] })
+        .oneGridMedium,
+    ).toBe(false);
+    expect(
+      effect(
+        planOf({ ...base(), media: [smoke()], lights: [sun], scatteringOrder: 'unlimited' }),
+        'integrator',
+      )?.method,
+    ).toMatch(/one grid medium under delta lights/);
+  });
+
   it('order ≥ 2 with something that scatters: the path tracer', () => {
     expect(plan(parseScene(exampleSceneJson('cloud-sky'))).integrator).toBe('path-tracing');
     const surfacesOnly = plan(parseScene(exampleSceneJson('spheres-on-floor')));
@@ -392,6 +426,8 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'surfaceHitDistance',
       'estimatePathTracing',
       'estimatePathTracingOneMedium',
+      'pathTracingStep',
+      'oneMediumPathStep',
     ])
       expect(defines(single, fn), fn).toBe(false);
     const multiple = await link({
@@ -400,10 +436,29 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       media: [fog()],
       lights: [{ type: 'point', position: [0, 0.5, 0], intensity: [1, 1, 1] }],
     });
-    expect(defines(multiple, 'estimatePathTracingOneMedium')).toBe(true);
+    // The kernel advances paths a segment at a time (path regeneration).
+    expect(defines(multiple, 'oneMediumPathStep')).toBe(true);
     expect(defines(multiple, 'mediumFreeFlight')).toBe(true);
-    for (const fn of ['estimatePathTracing', 'sceneSegments', 'vertexDirectLighting'])
+    for (const fn of [
+      'pathTracingStep',
+      'sceneSegments',
+      'vertexDirectLighting',
+      'oneMediumRatioTracking',
+    ])
       expect(defines(multiple, fn), fn).toBe(false);
+  });
+
+  it('one grid medium under delta lights, path traced: the one-medium path tracer with ratio-tracked shadow rays', async () => {
+    const code = await link({
+      ...base(),
+      scatteringOrder: 'unlimited',
+      media: [{ ...fog(), type: 'grid', grid: { dimensions: [1, 1, 1], density: [1] } }],
+      lights: [{ type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] }],
+    });
+    for (const fn of ['oneMediumPathStep', 'oneMediumRatioTracking', 'gridDensityTrilinear'])
+      expect(defines(code, fn), fn).toBe(true);
+    for (const fn of ['pathTracingStep', 'sceneSegments', 'segmentWalk', 'vertexDirectLighting'])
+      expect(defines(code, fn), fn).toBe(false);
   });
 
   it('grids with point and spot lights: ratio tracking, the majorant grid and the spot falloff are linked', async () => {
@@ -440,7 +495,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
   it('the general kernel links every effect', async () => {
     const code = await linkSceneKernel(SHADER_LIBRARY, GENERAL_CONDITIONS);
     for (const fn of [
-      'estimatePathTracing',
+      'pathTracingStep',
       'mediumFreeFlight',
       'gridDensityTrilinear',
       'hgEvalDirections',

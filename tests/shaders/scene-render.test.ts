@@ -7,11 +7,13 @@
 //    general kernel; f32 rounding makes some paths diverge, so agreement is statistical;
 //  - the white furnace on the GPU: every pixel equals the environment;
 //  - specialized vs general kernels on the GPU (different code, different random numbers);
-//    the §5 slab runs the one-medium kernels (plan condition oneHomogeneousMedium).
+//    the §5 slab runs the one-medium kernels (plan condition oneHomogeneousMedium), and a
+//    small grid the one-medium path tracer (oneGridMedium).
 // Images are small (8×8, a few dozen samples) because SwiftShader runs WebGPU on the CPU;
 // each distinct kernel is compiled once (the pipeline cache is per device).
-import { beforeAll, describe, it } from 'vitest';
+import { beforeAll, describe, expect, it } from 'vitest';
 import type { ResolvedScene } from '../../src/scene/load.ts';
+import { plan } from '../../src/scene/plan.ts';
 import type { SceneRenderOptions } from '../../src/scene/renderScene.ts';
 import {
   pointLightExact,
@@ -135,6 +137,51 @@ describe('scene kernel on the GPU', () => {
         specialized,
         await gpu(scene, { kernel: 'general', spp: 128 }),
         'one-medium path tracer vs general kernel',
+      );
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'the one-medium path tracer in a grid (sun and a point light, all orders): GPU = twin, and = the general kernel',
+    async () => {
+      // A 3³ grid with empty, thin and dense cells (delta tracking meets null collisions,
+      // ratio-tracked shadow rays start and end inside the medium at the point light).
+      const density = Array.from({ length: 27 }, (_, i) => [0, 0.2, 1, 3][(i * 7) % 4]!);
+      const scene = await sceneFrom({
+        image: { width: 6, height: 6 },
+        samplesPerPixel: 48,
+        seed: 3,
+        scatteringOrder: 'unlimited',
+        camera: {
+          type: 'perspective',
+          position: [0.4, 0.3, 3.2],
+          target: [0, 0, 0],
+          up: [0, 1, 0],
+          fovY: 40,
+        },
+        media: [
+          {
+            type: 'grid',
+            bounds: { type: 'box', min: [-1, -1, -1], max: [1, 1, 1] },
+            sigmaA: [0.2, 0.1, 0.6],
+            sigmaS: [1.5, 2, 0.8],
+            phase: { type: 'henyey-greenstein', g: 0.5 },
+            grid: { dimensions: [3, 3, 3], density },
+          },
+        ],
+        lights: [
+          { type: 'directional', direction: [0.3, -0.9, -0.2], irradiance: [2, 2, 2] },
+          { type: 'point', position: [0.2, 0.5, 0.1], intensity: [0.3, 0.2, 0.1] },
+        ],
+      });
+      expect(plan(scene.scene).conditions.oneGridMedium, 'the plan picks it').toBe(true);
+      const specialized = await gpu(scene);
+      expectAgreement(specialized, await cpu(scene), 'one-grid-medium path tracer, GPU vs twin');
+      expectAgreement(
+        specialized,
+        await gpu(scene, { kernel: 'general' }),
+        'one-grid-medium path tracer vs general kernel',
       );
     },
     GPU_TIMEOUT,
