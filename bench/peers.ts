@@ -7,11 +7,14 @@
 // channel; Mitsuba's: spp × the variance of independent images), and the equal-error time
 // ratio ours ÷ Mitsuba, (var_ours/var_mi)·(t_ours/t_mi) per path, for the render passes
 // and for the whole process (our `render` command, Mitsuba's python, same spp). Our kernel
-// is timed twice, alternating pass by pass: the plan's kernel and the plan's kernel without
-// the one-medium kernels (oneHomogeneousMedium off: the kernel the plan linked before).
+// is timed three times, alternating pass by pass: the plan's kernel; the plan's kernel
+// without the one-medium kernels (oneHomogeneousMedium and oneGridMedium off: the general
+// kernel); and the plan's kernel awaited with dawn.node's own busy poll instead of
+// src/gpu/quietPolling.ts (the main thread spinning at a core beside SwiftShader's).
 import { spawn, spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
+import { setQuietPolling } from '../src/gpu/quietPolling.ts';
 import { loadShaderLibrary } from '../src/gpu/shaderSourcesNode.ts';
 import { GpuSceneRenderer } from '../src/scene/gpuRenderer.ts';
 import { resolveScene, type ResolvedScene } from '../src/scene/load.ts';
@@ -276,11 +279,17 @@ interface OurTiming {
   imageMeanVariance: number;
 }
 
+/** One way of running our kernel: its conditions, and whether Node polls quietly. */
+interface OurVariant {
+  conditions: Conditions;
+  quietPolling: boolean;
+}
+
 /** Our kernels on one scene, pass by pass, alternating; medians of the GPU pass times. */
 async function timeOurs(
   device: GPUDevice,
   resolved: ResolvedScene,
-  kernels: readonly Conditions[],
+  kernels: readonly OurVariant[],
   spp: number,
   samplesPerPass: number,
 ): Promise<OurTiming[]> {
@@ -288,7 +297,7 @@ async function timeOurs(
   const packed = packScene(resolved);
   const renderers: GpuSceneRenderer[] = [];
   try {
-    for (const conditions of kernels)
+    for (const { conditions } of kernels)
       renderers.push(await GpuSceneRenderer.create(device, library, packed, conditions));
     for (const renderer of renderers) {
       await renderer.renderPass(0, samplesPerPass);
@@ -298,7 +307,10 @@ async function timeOurs(
     for (let offset = 0; offset < spp; offset += samplesPerPass) {
       const samples = Math.min(samplesPerPass, spp - offset);
       for (let k = 0; k < renderers.length; k++) {
-        const output = await renderers[k]!.renderPass(offset, samples);
+        setQuietPolling(kernels[k]!.quietPolling);
+        const output = await renderers[k]!.renderPass(offset, samples).finally(() =>
+          setQuietPolling(true),
+        );
         times[k]!.push(output.milliseconds / samples);
       }
     }
@@ -409,14 +421,20 @@ export async function benchPeers(
     const mi = mitsuba.get(scene.name);
     if (!mi) throw new Error(`peers: Mitsuba returned nothing for ${scene.name}`);
     const scenePlan = plan(scene.resolved.scene);
-    const before = { ...scenePlan.conditions, oneHomogeneousMedium: false };
-    const [ours, previous] = (await timeOurs(
+    const before = { ...scenePlan.conditions, oneHomogeneousMedium: false, oneGridMedium: false };
+    const oneMedium =
+      scenePlan.conditions.oneHomogeneousMedium || scenePlan.conditions.oneGridMedium;
+    const [ours, previous, spinning] = (await timeOurs(
       device,
       scene.resolved,
-      [scenePlan.conditions, before],
+      [
+        { conditions: scenePlan.conditions, quietPolling: true },
+        { conditions: before, quietPolling: true },
+        { conditions: scenePlan.conditions, quietPolling: false },
+      ],
       options.spp,
       options.samplesPerPass,
-    )) as [OurTiming, OurTiming];
+    )) as [OurTiming, OurTiming, OurTiming];
     const pixels = mi.width * mi.height;
     const miPathsPerSecond = (pixels * options.spp) / median(mi.seconds);
     const miVariance = mi.sampleVariance.reduce((a, b) => a + b, 0) / mi.sampleVariance.length;
@@ -429,14 +447,11 @@ export async function benchPeers(
       scene: scene.name,
       'Mitsuba paths/s': miPathsPerSecond,
       'ours paths/s': ours.pathsPerSecond,
-      'ours paths/s, previous kernel': scenePlan.conditions.oneHomogeneousMedium
-        ? previous.pathsPerSecond
-        : null,
+      'ours paths/s, previous kernel': oneMedium ? previous.pathsPerSecond : null,
+      "ours paths/s, dawn.node's busy poll": spinning.pathsPerSecond,
       'variance per sample, Mitsuba ÷ ours': miVariance / ours.sampleVariance,
       'equal-error time, ours ÷ Mitsuba (pass)': equalError(ours),
-      'same, previous kernel': scenePlan.conditions.oneHomogeneousMedium
-        ? equalError(previous)
-        : null,
+      'same, previous kernel': oneMedium ? equalError(previous) : null,
       'image mean ours / Mitsuba': `${ours.imageMean.toPrecision(5)} / ${miMean.toPrecision(5)}`,
       'agreement |z| (image mean)':
         Math.abs(ours.imageMean - miMean) / Math.sqrt(ours.imageMeanVariance + miMeanVariance),
@@ -480,7 +495,8 @@ export async function benchPeers(
     notes: [
       `${options.size}×${options.size} orthographic, box [−1, 1]³, HG g = 0.6; ${options.spp} spp per image; ours in passes of ${options.samplesPerPass} (median GPU pass time, compilation excluded), Mitsuba ${options.mitsubaImages} independent images after a warm-up render (median wall time of mi.render, JIT excluded).`,
       'Variance per sample: ours n·SE² per pixel and channel, Mitsuba spp × the variance over its independent images, both averaged over pixels and channels. Equal-error time = (var_ours/var_Mitsuba)·(t_ours/t_Mitsuba) per path; ≤ 1 means we reach Mitsuba’s error in its time or less.',
-      '"previous kernel": the plan without the one-medium kernels (oneHomogeneousMedium off), timed pass by pass alternating with the plan’s kernel; — where the plan does not use them.',
+      '"previous kernel": the plan without the one-medium kernels (oneHomogeneousMedium, oneGridMedium off: the general path tracer or single-scattering estimator), timed pass by pass alternating with the plan’s kernel; — where the plan does not use them.',
+      '"dawn.node\'s busy poll": the plan’s kernel awaited as dawn.node does by itself (its main thread spins while SwiftShader works), instead of src/gpu/quietPolling.ts; same kernel, alternating.',
       'Process: the wall time of our `render` command (gpu-env.sh + tsx, as `npm run render` without npm) and of Mitsuba’s python (import, JIT, one render), same spp.',
       'Agreement: |z| of the image-mean difference (Mitsuba’s image is mirrored left–right by its look_at frame; the mean is not).',
     ],

@@ -3,7 +3,7 @@
 // --only=core,transmittance,estimators,subsurface,translucent,chromatic,room,widgets,scenes,peers,photons,grading,pages,interaction,neural
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
-// and --only-widgets=a,b, see bench/interaction.ts; `neural` takes --seconds=S and the
+// and --only-widgets=a,b, see bench/interaction.ts (`widgets` takes --only-widgets too); `neural` takes --seconds=S and the
 // problem as --views= --batch= --steps= --rate= --table= --grid=, see bench/neural.ts).
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
@@ -93,7 +93,17 @@ if (wanted('room'))
     })),
   );
 if (wanted('grading')) tables.push(await benchGrading(device, { repeats: quick ? 3 : 9 }));
-if (wanted('widgets')) tables.push(await benchWidgets({ repeats: quick ? 3 : 9 }));
+if (wanted('widgets'))
+  tables.push(
+    await benchWidgets({
+      repeats: quick ? 3 : 9,
+      only: process.argv
+        .find((a) => a.startsWith('--only-widgets='))
+        ?.slice('--only-widgets='.length)
+        .split(',')
+        .filter(Boolean),
+    }),
+  );
 if (wanted('pages')) tables.push(...(await benchPages({ dist, repeats: quick ? 1 : 3 })));
 if (wanted('interaction'))
   tables.push(...(await benchInteraction(interactionOptionsFromArgs(process.argv, quick ? 3 : 5))));

@@ -39,7 +39,11 @@ interface FrameSample {
   frame: number;
 }
 
-export async function benchWidgets(options: { repeats: number }): Promise<BenchTable> {
+export async function benchWidgets(options: {
+  repeats: number;
+  /** Only these widgets (names without sb-), e.g. from --only-widgets=a,b. */
+  only?: readonly string[];
+}): Promise<BenchTable> {
   const server = await createServer({
     root: ROOT,
     configFile: `${ROOT}/vite.config.ts`,
@@ -60,6 +64,7 @@ export async function benchWidgets(options: { repeats: number }): Promise<BenchT
       if (message.type() === 'error') errors.push(message.text());
     });
     for (const [name, path] of pagesByWidget()) {
+      if (options.only && !options.only.includes(name)) continue;
       errors.length = 0;
       try {
         rows.push(await measure(name, path));
