@@ -7,7 +7,8 @@
 // - input to first picture: the first slider of its controls is set to another value
 //   and an `input` event dispatched (t0 = performance.now() just before); the first
 //   picture is the next increment of the frame counter (data-frames, or data-rendered
-//   in builds without it), seen by a MutationObserver in the page;
+//   in builds without it), seen by a MutationObserver in the page; it is on screen with
+//   the next animation frame the page produces after that (a requestAnimationFrame);
 // - time to full quality: from t0 until the widget says it is settled (data-settled
 //   = "true"), or, in builds without data-settled, until the counter has moved and then
 //   stayed still for 1 s (full quality = its last move); capped at 120 s (a widget
@@ -33,6 +34,7 @@ import { WIDGET_CATALOG } from '../src/widgets/catalog.ts';
 import {
   changeValues,
   dragValues,
+  firstShown,
   framesBetween,
   judgeChange,
   longestTask,
@@ -43,6 +45,7 @@ import {
   type LongTask,
   type Observation,
   type RawObservation,
+  type ShownFrame,
 } from './interactionJudge.ts';
 import { median, printTable, type BenchTable } from './table.ts';
 
@@ -100,9 +103,19 @@ const RECORDER = `(tag) => {
     frameMs: el.getAttribute('data-frame-ms'),
     timer: el.getAttribute('data-frame-timer'),
   });
-  const state = { el, log: [snap()], tasks: [], taskObserver: null, control: null };
+  const state = { el, log: [snap()], tasks: [], shown: [], taskObserver: null, control: null };
   window.__sbBench = state;
-  new MutationObserver(() => state.log.push(snap())).observe(el, { attributes: true, attributeFilter: names });
+  // The page's next animation frame after each move of the frame counter: when that
+  // picture reached the screen.
+  let lastCount = el.getAttribute('data-frames') ?? el.getAttribute('data-rendered');
+  new MutationObserver(() => {
+    const now = snap();
+    state.log.push(now);
+    const count = now.frames ?? now.rendered;
+    if (count === lastCount) return;
+    lastCount = count;
+    requestAnimationFrame(() => state.shown.push({ frames: Number(count) || 0, t: performance.now() }));
+  }).observe(el, { attributes: true, attributeFilter: names });
   try {
     state.taskObserver = new PerformanceObserver((list) => {
       for (const e of list.getEntries()) state.tasks.push({ startTime: e.startTime, duration: e.duration });
@@ -150,25 +163,28 @@ interface ControlInfo {
 class Recording {
   readonly log: Observation[] = [];
   readonly tasks: LongTask[] = [];
+  readonly shown: ShownFrame[] = [];
   now = 0;
   constructor(private readonly page: Page) {}
 
   async fetch(): Promise<void> {
     const fresh = await this.page.evaluate(
-      ([fromLog, fromTasks]) => {
+      ([fromLog, fromTasks, fromShown]) => {
         const state = (window as unknown as { __sbBench: BenchState }).__sbBench;
         for (const entry of state.taskObserver?.takeRecords() ?? [])
           state.tasks.push({ startTime: entry.startTime, duration: entry.duration });
         return {
           log: state.log.slice(fromLog),
           tasks: state.tasks.slice(fromTasks),
+          shown: state.shown.slice(fromShown),
           now: performance.now(),
         };
       },
-      [this.log.length, this.tasks.length] as const,
+      [this.log.length, this.tasks.length, this.shown.length] as const,
     );
     this.log.push(...fresh.log.map(observation));
     this.tasks.push(...fresh.tasks);
+    this.shown.push(...fresh.shown);
     this.now = fresh.now;
   }
 
@@ -203,6 +219,7 @@ interface BenchState {
   el: HTMLElement;
   log: RawObservation[];
   tasks: LongTask[];
+  shown: ShownFrame[];
   taskObserver: PerformanceObserver | null;
   control: HTMLInputElement | HTMLSelectElement | null;
 }
@@ -283,6 +300,8 @@ function beyond(capMs: number): string {
 
 interface ChangeSample {
   firstMs: number;
+  /** To the page's next animation frame after the first picture; null when none was logged. */
+  shownMs: number | null;
   fullMs: number | null;
   stage: string | null;
   frameMs: number | null;
@@ -362,10 +381,12 @@ async function measureWidget(
       const outcome = await recording.waitSettled(t0, frames0, QUIET_MS, capMs);
       if (!outcome.firstPicture)
         throw new Error(`no new frame ${SETTLE_CAP_MS / 1000} s after an input`);
+      const shown = firstShown(recording.shown, t0, frames0);
       // The cost at full quality, or the latest one where the widget never settled.
       const costAt = outcome.settled ?? recording.log[recording.log.length - 1] ?? null;
       samples.push({
         firstMs: outcome.firstPicture.t - t0,
+        shownMs: shown ? shown.t - t0 : null,
         fullMs: outcome.settled ? outcome.settled.t - t0 : null,
         stage: outcome.firstPicture.stage,
         frameMs: costAt?.frameMs ?? null,
@@ -408,6 +429,7 @@ async function measureWidget(
     const stages = [...new Set(samples.map((s) => s.stage ?? '—'))];
     const costs = samples.map((s) => s.frameMs).filter((ms): ms is number => ms !== null);
     const timer = samples.find((s) => s.timer)?.timer ?? '';
+    const shownTimes = samples.map((s) => s.shownMs).filter((ms): ms is number => ms !== null);
     const fellBack =
       backend === 'gpu' &&
       (await page.evaluate(() =>
@@ -425,6 +447,7 @@ async function measureWidget(
             ? `${control.name} ${pair[1]}→${pair[0]}`
             : `${control.name} (select) ${pair[1]}→${pair[0]}`,
         'first picture ms (median)': median(samples.map((s) => s.firstMs)),
+        'on screen ms (median)': shownTimes.length > 0 ? median(shownTimes) : 'not logged',
         'stage at first picture': stages.join(' / '),
         'full quality ms (median)': full.includes(null)
           ? `${beyond(capMs)}${capLabel}`
@@ -535,6 +558,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
           `Medians of up to ${options.repeats} changes of the first slider (60 % of its range ↔ its initial value), after the widget settled; ` +
             `a widget stops repeating once its changes took ${CHANGE_BUDGET_MS / 1000} s (the "changes" column).`,
           'first picture: t0 = performance.now() before the input event, to the next increment of data-frames (data-rendered where the build has no data-frames).',
+          'on screen: t0 to the first animation frame the page produced after that increment (the drawing reaches the screen with that frame; on SwiftShader under load frames can come hundreds of ms apart).',
           quietJudged.length > 0
             ? `settled: data-settled = "true"; where the build has no data-settled (${quietJudged.join(', ')}), the frame counter moved and then stayed still for ${QUIET_MS / 1000} s (full quality = its last move).`
             : 'settled: data-settled = "true" after the input\'s first frame.',

@@ -124,6 +124,26 @@ export function totalBlockingTime(tasks: readonly LongTask[]): number {
   return tasks.reduce((sum, task) => sum + Math.max(0, task.duration - LONG_TASK_MS), 0);
 }
 
+/** The page's next animation frame after the frame counter reached `frames` (the recorder's log of them). */
+export interface ShownFrame {
+  frames: number;
+  t: number;
+}
+
+/**
+ * When the input's first picture reached the screen: the first animation frame that
+ * came after the counter passed `frames0`, at or after `t0` (null when none was logged).
+ * A widget's frame counter moves when it has drawn; the page shows the drawing with its
+ * next frame, which on a software adapter under load can come hundreds of ms later.
+ */
+export function firstShown(
+  shown: readonly ShownFrame[],
+  t0: number,
+  frames0: number,
+): ShownFrame | null {
+  return shown.find((s) => s.t >= t0 && s.frames > frames0) ?? null;
+}
+
 /** The longest task's duration, or null when there was none (every task under 50 ms). */
 export function longestTask(tasks: readonly LongTask[]): number | null {
   return tasks.length === 0 ? null : Math.max(...tasks.map((task) => task.duration));

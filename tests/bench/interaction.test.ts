@@ -5,6 +5,7 @@ import { describe, expect, it } from 'vitest';
 import {
   changeValues,
   dragValues,
+  firstShown,
   framesBetween,
   judgeChange,
   longestTask,
@@ -160,5 +161,20 @@ describe('slider values', () => {
     const values = dragValues({ min: 1, max: 4, step: 1 }, 8);
     expect(values).toEqual([1, 2, 3, 4, 3, 2, 1, 2]);
     expect(dragValues({ min: 3, max: 3, step: 1 }, 20)).toEqual([]);
+  });
+});
+
+describe('firstShown', () => {
+  it('is the first animation frame after the counter passed frames0, at or after t0', () => {
+    const shown = [
+      { frames: 4, t: 50 },
+      { frames: 5, t: 80 },
+      { frames: 6, t: 420 },
+      { frames: 7, t: 500 },
+    ];
+    // Frame 5 was shown before the input: it does not count.
+    expect(firstShown(shown, 100, 5)).toEqual({ frames: 6, t: 420 });
+    expect(firstShown(shown, 100, 7)).toBeNull();
+    expect(firstShown([], 0, 0)).toBeNull();
   });
 });

@@ -129,7 +129,13 @@ export function drawLobeWireframe(
   orbit: Orbit,
   scale: number,
 ): void {
-  const context = canvas.getContext('2d');
+  // A canvas rasterised on the CPU, in the page (willReadFrequently asks for one; the
+  // first getContext call fixes it for the canvas's life). Accelerated, Chromium hands
+  // the few thousand round-capped, semi-transparent segments to its GPU process; on a
+  // software adapter (SwiftShader) that took 0.6–2.7 s per wireframe, during which the
+  // page produced no animation frame at all, so every other picture of the widget
+  // waited too (issue 23: hg-lobe's CPU first picture 1.0–2.1 s, 150–230 ms without).
+  const context = canvas.getContext('2d', { willReadFrequently: true });
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const bounds = sceneBounds(inputs, logFloor);
   const camera = orbitCamera(bounds, orbit, canvas.width / canvas.height);

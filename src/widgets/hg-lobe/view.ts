@@ -14,7 +14,9 @@ import {
   CPU_FIRST_PICTURE_MS,
   GPU_FIRST_PICTURE_MS,
   Ladder,
+  type Refinement,
   type Rung,
+  type RungChoice,
 } from '../base/refinement.ts';
 import { paintPolar, sampleHistogramCpuInChunks } from './cpuBackend.ts';
 import type { jobs as hgJobTable } from './jobs.ts';
@@ -51,8 +53,16 @@ const TIMING_FRAMES = 8;
 const REFINE_DOUBLINGS = 6;
 /** …and climbs this many doublings per stage: the stages before full quality add 1/7 of its cost, not all of it. */
 const DOUBLINGS_PER_RUNG = 3;
-/** The CPU fallback's polar picture: 1/POLAR_CPU_SCALE of the canvas's resolution. */
+/** The CPU fallback's polar picture: 1/POLAR_CPU_SCALE of the canvas's resolution (the twin's full quality)… */
 const POLAR_CPU_SCALE = 2;
+/**
+ * …after a first picture at 1/POLAR_CPU_PREVIEW_SCALE (a quarter of the pixels) where the
+ * measured cost says the full one does not fit half the CPU's first-picture budget: the
+ * float64 shading of 480×240 pixels took 100–330 ms in the compute worker on a loaded
+ * two-core machine (issue 23), the CPU's whole budget. The other half is the histogram's.
+ */
+const POLAR_CPU_PREVIEW_SCALE = 4;
+const POLAR_CPU_SCALES: readonly number[] = [POLAR_CPU_PREVIEW_SCALE, POLAR_CPU_SCALE];
 
 /**
  * The histogram's refinement (issue 23): the same streams (samples 0 … 2ᵏ − 1 of the
@@ -129,6 +139,27 @@ function stageInputs(inputs: HgLobeInputs, exponent: number): HgLobeInputs {
   return { ...inputs, samplesExponent: exponent, sampleCount: 2 ** exponent };
 }
 
+/**
+ * The inputs of the polar picture: it depends on g, the comparison and the scale only, so
+ * N and the seed are left out of its job's arguments (and cache key) in the worker.
+ */
+function polarInputs(inputs: HgLobeInputs): HgLobeInputs {
+  return { ...inputs, samplesExponent: 0, sampleCount: 0, seed: 0 };
+}
+
+/** The label of a CPU frame: its samples, and the polar picture's resolution while it is coarse. */
+function cpuStage(samples: RungChoice<number>, polarScale: number): Refinement {
+  const polarFinal = polarScale === POLAR_CPU_SCALE;
+  const final = samples.final && polarFinal;
+  const polarNote = polarFinal
+    ? ''
+    : `, polar picture at 1/${polarScale} of the canvas's resolution`;
+  return {
+    label: `${final ? '' : 'Preview: '}${samples.rung.label}${polarNote}`,
+    pending: final ? null : 'frame',
+  };
+}
+
 export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFrame, HgLobeGpu> {
   const polar = context.canvas({ width: 960, height: 480, className: 'sb-canvas sb-hg-polar' });
   const labels = document.createElement('div');
@@ -146,7 +177,8 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
     const key = `${kind}:${exponent}`;
     let found = ladders.get(key);
     if (!found) {
-      const budget = kind === 'gpu' ? GPU_FIRST_PICTURE_MS : CPU_FIRST_PICTURE_MS;
+      // On the CPU the polar picture takes the other half of the budget (POLAR_CPU_PREVIEW_SCALE).
+      const budget = kind === 'gpu' ? GPU_FIRST_PICTURE_MS : CPU_FIRST_PICTURE_MS / 2;
       found = new Ladder(sampleRungs(exponent), budget);
       ladders.set(key, found);
     }
@@ -156,6 +188,17 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
   let lobeScene = '';
   /** The polar picture's inputs last drawn (it does not depend on N or the seed). */
   let polarKey = '';
+  /** The CPU polar picture's resolution last drawn (1/scale of the canvas's). */
+  let polarScale: number = POLAR_CPU_SCALE;
+  /** The CPU polar picture's rungs; its cost per pixel is learnt from the worker's float64 time. */
+  const polarLadder = new Ladder<number>(
+    POLAR_CPU_SCALES.map((scale) => ({
+      value: scale,
+      work: (polar.element.width / scale) * (polar.element.height / scale),
+      label: `1/${scale} resolution`,
+    })),
+    CPU_FIRST_PICTURE_MS / 2,
+  );
   const polarKeyOf = (inputs: HgLobeInputs, kind: string): string =>
     `${kind}:${inputs.g}:${inputs.compare}:${inputs.scale}:${polar.element.width}`;
 
@@ -416,27 +459,35 @@ export function createView(context: ViewContext<HgLobeGpu>): WidgetView<HgLobeFr
       return frame;
     },
     async renderCpu(request) {
-      const started = performance.now();
       const inputs = inputsFrom(context.values);
       const steps = ladder('cpu', inputs.samplesExponent);
       const choice = steps.pick(request);
       const key = polarKeyOf(inputs, 'cpu');
-      if (request.stage === 0 || key !== polarKey) {
+      const fresh = request.stage === 0 || key !== polarKey;
+      if (fresh || polarScale !== POLAR_CPU_SCALE) {
+        // A new picture starts on the rung that fits (at once on the full one if the worker
+        // still has it); a later stage draws the full one.
         const { width, height } = polar.element;
-        const image = await jobs.run('polar', [inputs, width, height, POLAR_CPU_SCALE], {
-          signal: request.signal,
-        });
+        const args = (scale: number) =>
+          [polarInputs(inputs), width, height, scale] as [HgLobeInputs, number, number, number];
+        const ready = jobs.cached('polar', args(POLAR_CPU_SCALE)) !== undefined;
+        const scale = fresh && !ready ? polarLadder.pick({ stage: 0 }).rung.value : POLAR_CPU_SCALE;
+        const cached = jobs.cached('polar', args(scale)) !== undefined;
+        const image = await jobs.run('polar', args(scale), { signal: request.signal });
         paintPolar(polar.element, image);
+        if (!cached) polarLadder.record(POLAR_CPU_SCALES.indexOf(scale), image.milliseconds);
         polarKey = key;
+        polarScale = scale;
       }
       lobe?.useCpu();
       const stage = stageInputs(inputs, choice.rung.value);
-      const histogram = await jobs.run('histogram', [stage.g, stage.sampleCount, stage.seed], {
-        signal: request.signal,
-      });
-      const frame = frameOf(inputs, histogram, histogram, steps.refinement(choice));
-      steps.record(choice.index, performance.now() - started);
-      return frame;
+      const histogramArgs: [number, number, number] = [stage.g, stage.sampleCount, stage.seed];
+      // A histogram the worker still has says nothing about the cost of sampling.
+      const cached = jobs.cached('histogram', histogramArgs) !== undefined;
+      const started = performance.now();
+      const histogram = await jobs.run('histogram', histogramArgs, { signal: request.signal });
+      if (!cached) steps.record(choice.index, performance.now() - started);
+      return frameOf(inputs, histogram, histogram, cpuStage(choice, polarScale));
     },
     refinement: (frame) => frame.stage,
     onCpuFallback: () => {

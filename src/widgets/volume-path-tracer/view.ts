@@ -603,7 +603,11 @@ export function createView(
   const previewSpp = (kind: 'gpu' | 'cpu', perFrame: number): number => {
     const cost = msPerSpp[kind];
     if (cost === undefined) return 1;
-    const fits = Math.floor((PREVIEW_SHARE * firstPictureBudget(kind)) / cost);
+    // The CPU twin's passes queue in the compute worker behind the background pass it may
+    // be running when the input comes (a running job is not stopped): the preview leaves
+    // room for one (firstPictureProbe: a 200 ms background pass ahead of the preview's).
+    const room = kind === 'cpu' ? BACKGROUND_FRAME_MS : 0;
+    const fits = Math.floor((PREVIEW_SHARE * firstPictureBudget(kind) - room) / cost);
     return Math.max(1, Math.min(perFrame, fits));
   };
 
