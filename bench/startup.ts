@@ -119,6 +119,7 @@ export async function benchStartup(options: {
                 : 'baseline checkout (tsx)',
           'process s': median(list.map((s) => s.processMs)) / 1000,
           'first pass submitted ms': of((r) => r.firstPassSubmittedMs),
+          'CPU ms by then': of((r) => r.firstPassCpuMs),
           'Node bootstrap ms': of((r) => r.nodeBootstrapMs),
           'program loaded ms': of((r) => r.phases['load program']?.end ?? null),
           'webgpu + device ms': of((r) => {
@@ -152,7 +153,7 @@ export async function benchStartup(options: {
     title: 'Start-up of `npm run render`: process start to the first render pass submitted',
     notes: [
       `Medians of ${options.runs} processes per scene and command at 1 spp (64×64), after one uncounted run each; the modes alternate run by run. Load average (1 min) ${loadBefore.toFixed(2)} before, ${loadavg()[0]!.toFixed(2)} after, with ${cpus().length} cores.`,
-      'Phases from `render --stats` (startup): ms since the process started (performance.timeOrigin). "process s" is the whole process seen from outside (sh, node, the render, writing the image, exit).',
+      'Phases from `render --stats` (startup): ms since the process started (performance.timeOrigin). "CPU ms by then": the process\'s CPU time (all threads) at the first pass, which load stretches less than wall time. "process s" is the whole process seen from outside (sh, node, the render, writing the image, exit).',
       'The scene kernel and the accumulate kernel compile at once; SwiftShader compiling the scene kernel is the floor (Dawn in the webgpu package has no persistent pipeline cache: its requestDevice passes no DawnCacheDeviceDescriptor).',
     ],
     rows,

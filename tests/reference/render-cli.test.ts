@@ -50,6 +50,7 @@ interface Stats {
     nodeBootstrapMs: number;
     phases: Record<string, { start: number; end: number }>;
     firstPassSubmittedMs: number | null;
+    firstPassCpuMs: number | null;
   };
   standardError: { values: (number | null)[] };
 }
@@ -118,7 +119,7 @@ describe('scatterbook render', () => {
     expect(['gpu-timestamp', 'gpu-wall']).toContain(stats.passes[0]?.timing);
     // Start-up phases in ms since the process started: the program loads, Dawn makes the
     // device, both kernels compile at once, and the first pass is submitted after them.
-    const { phases, firstPassSubmittedMs, nodeBootstrapMs } = stats.startup;
+    const { phases, firstPassSubmittedMs, firstPassCpuMs, nodeBootstrapMs } = stats.startup;
     const phase = (name: string) => {
       const span = phases[name];
       expect(span, name).toBeDefined();
@@ -144,6 +145,7 @@ describe('scatterbook render', () => {
     expect(firstPassSubmittedMs).not.toBeNull();
     expect(firstPassSubmittedMs!).toBeGreaterThanOrEqual(rendering.start);
     expect(firstPassSubmittedMs!).toBeLessThanOrEqual(rendering.end);
+    expect(firstPassCpuMs).toBeGreaterThan(0);
     const { rgb } = decodePfm(new Uint8Array(readFileSync(file('furnace.pfm'))));
     // The image mean is 1 within 5 pooled standard errors (8 samples per pixel are too few
     // for per-pixel bounds; tests/shaders/scene-render.test.ts checks pixels).
