@@ -1,10 +1,12 @@
 // `npm run bench`: prints the benchmark tables and writes them as JSON to
 // bench/results/latest.json. Quick mode (--quick) uses fewer samples;
-// --only=core,transmittance,estimators,subsurface,translucent,chromatic,room,widgets,scenes,peers,photons,grading,pages,interaction,neural
+// --only=core,transmittance,estimators,subsurface,translucent,chromatic,room,widgets,scenes,peers,startup,photons,grading,pages,interaction,neural
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
-// and --only-widgets=a,b, see bench/interaction.ts (`widgets` takes --only-widgets too); `neural` takes --seconds=S and the
-// problem as --views= --batch= --steps= --rate= --table= --grid=, see bench/neural.ts).
+// and --only-widgets=a,b, see bench/interaction.ts (`widgets` takes --only-widgets too);
+// `neural` takes --seconds=S and the problem as --views= --batch= --steps= --rate= --table=
+// --grid=, see bench/neural.ts; `startup` takes --baseline=DIR, an older checkout to time
+// alongside, see bench/startup.ts).
 // Numbers are medians of repeated runs in one process; compare ratios, not
 // absolute times, on a shared machine.
 import { nodeDevice, releaseNodeDevice } from '../src/gpu/nodeDevice.ts';
@@ -18,6 +20,7 @@ import { benchPages } from './pages.ts';
 import { benchPeers } from './peers.ts';
 import { benchPhotons } from './photons.ts';
 import { benchScenes } from './scenes.ts';
+import { benchStartup } from './startup.ts';
 import { benchSubsurface } from './subsurface.ts';
 import { benchTranslucent } from './translucent.ts';
 import { benchTranslucentRoom } from './translucentRoom.ts';
@@ -32,6 +35,7 @@ const only = process.argv
   .split(',');
 const wanted = (name: string): boolean => !only || only.includes(name);
 const dist = process.argv.find((a) => a.startsWith('--dist='))?.slice('--dist='.length);
+const baseline = process.argv.find((a) => a.startsWith('--baseline='))?.slice('--baseline='.length);
 /** The number given as --name=value, else the fallback. */
 const numberArg = (name: string, fallback: number): number => {
   const value = process.argv.find((a) => a.startsWith(`--${name}=`))?.slice(name.length + 3);
@@ -125,6 +129,14 @@ if (only?.includes('peers'))
       samplesPerPass: quick ? 4 : 16,
       mitsubaImages: quick ? 4 : 8,
       processes: !process.argv.includes('--no-processes'),
+    }),
+  );
+if (wanted('startup'))
+  tables.push(
+    await benchStartup({
+      runs: quick ? 3 : 5,
+      scenes: quick ? 2 : 5,
+      ...(baseline ? { baseline } : {}),
     }),
   );
 if (wanted('photons'))

@@ -8,25 +8,30 @@
 // The GPU backend reads the function's WGSL signature from the linked library with
 // the WESL parser and evaluates it through src/gpu/functionEvaluator.ts, the code the
 // shader tests use; it takes f32, u32, i32, vecNf and array<f32, N> arguments.
+//
+// `render` must start fast (issue 19): the modules only `eval`, `list` and `slab` use (the
+// WESL parser among them) are imported by those commands, not at start-up.
 import { existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
-import {
-  evaluateOnGpu,
-  flattenCall,
-  functionsOf,
-  specFor,
-  UnsupportedSignatureError,
-  type Argument,
-  type FunctionSignature,
-} from '../gpu/functionEvaluator.ts';
+import type { Argument, FunctionSignature } from '../gpu/functionEvaluator.ts';
+
+/** The GPU function evaluator and the WGSL signature reader (WESL's parser). */
+type Evaluator = typeof import('../gpu/functionEvaluator.ts');
+const loadEvaluator = (): Promise<Evaluator> => import('../gpu/functionEvaluator.ts');
 import type { ShaderLibrary } from '../gpu/link.ts';
 import { loadShaderLibrary } from '../gpu/shaderSourcesNode.ts';
-import { slabCommand } from './slab.ts';
 import { RENDER_HELP, RENDER_SYNOPSIS, RenderInputError, runRender } from './render.ts';
+import { StartupTimer } from './startup.ts';
+
+/** Start-up phases, from the process's start (render --stats). */
+const timer = new StartupTimer();
+timer.record('load program', 0);
 
 const SHADERS_DIRECTORY = fileURLToPath(new URL('../../shaders', import.meta.url));
-const REFERENCE_DIRECTORY = fileURLToPath(new URL('../reference', import.meta.url));
+// From the project root, so that it holds for src/cli/main.ts and the prebuilt bundle in
+// .cache/cli/ (scripts/cli.mjs) alike.
+const REFERENCE_DIRECTORY = fileURLToPath(new URL('../../src/reference', import.meta.url));
 
 const USAGE = `Usage:
   scatterbook eval MODULE.FUNCTION --args JSON [--backend gpu|cpu] [--json]
@@ -149,7 +154,12 @@ function checkArity(label: string, call: number, given: number, expected: number
     );
 }
 
-function findSignature(library: ShaderLibrary, module: string, fn: string): FunctionSignature {
+function findSignature(
+  { functionsOf }: Evaluator,
+  library: ShaderLibrary,
+  module: string,
+  fn: string,
+): FunctionSignature {
   const functions = functionsOf(library, module);
   const signature = functions.find((s) => s.fn === fn);
   if (!signature)
@@ -160,6 +170,7 @@ function findSignature(library: ShaderLibrary, module: string, fn: string): Func
 }
 
 async function evaluateGpu(
+  evaluator: Evaluator,
   library: ShaderLibrary,
   module: string,
   fn: string,
@@ -169,7 +180,8 @@ async function evaluateGpu(
     throw new UsageError(
       `unknown module "${module}"; modules: ${libraryModules(library).join(', ')}`,
     );
-  const signature = findSignature(library, module, fn);
+  const { evaluateOnGpu, flattenCall, specFor, UnsupportedSignatureError } = evaluator;
+  const signature = findSignature(evaluator, library, module, fn);
   let spec;
   try {
     spec = specFor(signature);
@@ -201,6 +213,7 @@ async function evaluateGpu(
 }
 
 async function evaluateCpu(
+  { functionsOf }: Evaluator,
   library: ShaderLibrary,
   module: string,
   fn: string,
@@ -264,17 +277,18 @@ async function runEval(
   // Formatted before the call: a twin may update its arguments (an RNG state).
   const argumentCells = calls.map((call) => call.map(formatValue));
   const library = loadShaderLibrary(SHADERS_DIRECTORY);
+  const evaluator = await loadEvaluator();
   const results =
     backend === 'gpu'
-      ? await evaluateGpu(library, module, fn, calls)
-      : await evaluateCpu(library, module, fn, calls);
+      ? await evaluateGpu(evaluator, library, module, fn, calls)
+      : await evaluateCpu(evaluator, library, module, fn, calls);
   const output: EvalResult = { function: `${module}.${fn}`, backend, results };
   if (values.json) {
     console.log(JSON.stringify(output, null, 2));
     return;
   }
   const signature = libraryModules(library).includes(module)
-    ? functionsOf(library, module).find((s) => s.fn === fn)
+    ? evaluator.functionsOf(library, module).find((s) => s.fn === fn)
     : undefined;
   const names =
     signature?.params.map((p) => p.name) ??
@@ -296,6 +310,7 @@ async function runEval(
 
 async function runList(json: boolean): Promise<void> {
   const library = loadShaderLibrary(SHADERS_DIRECTORY);
+  const { functionsOf, specFor, UnsupportedSignatureError } = await loadEvaluator();
   const modules = [];
   for (const module of libraryModules(library)) {
     const twins = await loadTwins(module);
@@ -328,7 +343,7 @@ async function runList(json: boolean): Promise<void> {
 
 async function main(argv: readonly string[]): Promise<number> {
   // `slab` has options of its own (src/cli/slab.ts).
-  if (argv[0] === 'slab') return slabCommand(argv.slice(1));
+  if (argv[0] === 'slab') return (await import('./slab.ts')).slabCommand(argv.slice(1));
   let parsed;
   try {
     parsed = parseArgs({
@@ -360,7 +375,7 @@ async function main(argv: readonly string[]): Promise<number> {
   try {
     if (command === 'eval') await runEval(positionals, values);
     else if (command === 'list') await runList(values.json ?? false);
-    else if (command === 'render') await runRender(positionals, values);
+    else if (command === 'render') await runRender(positionals, values, timer);
     else
       throw new UsageError(
         command === undefined ? 'no command' : `unknown command ${JSON.stringify(command)}`,

@@ -5,14 +5,19 @@
 // every pass, the samples and the per-pixel standard error.
 import { writeFile } from 'node:fs/promises';
 import { fileURLToPath } from 'node:url';
-import { PNG } from 'pngjs';
+import type { PrelinkedKernels } from '../gpu/link.ts';
 import { diskCachedKernels } from '../gpu/linkCacheNode.ts';
 import { loadShaderLibrary } from '../gpu/shaderSourcesNode.ts';
+import { GpuAccumulation } from '../scene/gpuAccumulation.ts';
+import { GpuSceneRenderer } from '../scene/gpuRenderer.ts';
 import { encodePfm, toneMapRgba8 } from '../scene/image.ts';
+import type { ResolvedScene } from '../scene/load.ts';
 import { loadSceneFile } from '../scene/loadNode.ts';
+import { GENERAL_CONDITIONS, plan } from '../scene/plan.ts';
 import type { RenderProgress } from '../scene/render.ts';
 import { renderScene, type Backend, type SceneRender } from '../scene/renderScene.ts';
 import { SceneValidationError } from '../scene/validate.ts';
+import { StartupTimer, type StartupReport } from './startup.ts';
 
 const SHADERS_DIRECTORY = fileURLToPath(new URL('../../shaders', import.meta.url));
 /** Linked WGSL per kernel variant (src/gpu/linkCacheNode.ts); git ignores .cache/. */
@@ -27,7 +32,8 @@ export const RENDER_HELP = `render  Renders a scene description (see the README'
         --png       a preview: radiance × 2^EV (--exposure, default 0), clamped, sRGB
         --spp       samples per pixel (default: the scene's samplesPerPixel)
         --backend   gpu (default; Dawn, SwiftShader without a GPU) or cpu (float64 twin)
-        --stats     JSON: plan, per-pass times, samples, per-pixel standard error
+        --stats     JSON: plan, per-pass times, samples, per-pixel standard error,
+                    start-up phases (ms since the process started)
         --kernel    plan (default: only the effects the scene needs) or general
         Progress goes to stderr; an invalid scene exits with status 2 and its errors.`;
 
@@ -70,7 +76,13 @@ function progressPrinter(): (progress: RenderProgress) => void {
   };
 }
 
-function statistics(scenePath: string, render: SceneRender, deviceName: string, wallMs: number) {
+function statistics(
+  scenePath: string,
+  render: SceneRender,
+  deviceName: string,
+  wallMs: number,
+  startup: StartupReport,
+) {
   const { accumulator: acc } = render;
   const mean = acc.mean();
   const se = acc.standardError();
@@ -110,6 +122,7 @@ function statistics(scenePath: string, render: SceneRender, deviceName: string, 
       msPerSamplePerPixel: passMs / Math.max(render.spp, 1),
       nsPerPathSample: (1e6 * passMs) / Math.max(render.spp * pixels, 1),
     },
+    startup,
     densityLookups: acc.lookups,
     cappedWalks: acc.capped,
     radiance: { unit: 'W/(m²·sr)', meanOverPixels: channelMean(mean), max: channelMax(mean) },
@@ -122,7 +135,65 @@ function statistics(scenePath: string, render: SceneRender, deviceName: string, 
   };
 }
 
-export async function runRender(positionals: string[], flags: RenderFlags): Promise<void> {
+async function readScene(scenePath: string): Promise<ResolvedScene> {
+  try {
+    return await loadSceneFile(scenePath);
+  } catch (error) {
+    if (error instanceof SceneValidationError)
+      throw new RenderInputError(`${scenePath}: ${error.message}`);
+    if ((error as NodeJS.ErrnoException).code === 'ENOENT')
+      throw new RenderInputError(`cannot read ${scenePath}: no such file`);
+    throw error;
+  }
+}
+
+interface OpenDevice {
+  device: GPUDevice;
+  release: () => Promise<void>;
+}
+
+/** Dawn (the webgpu package, imported only for the GPU backend) and its device. */
+async function openDevice(timer: StartupTimer): Promise<OpenDevice> {
+  const { nodeDevice, releaseNodeDevice } = await timer.time(
+    'import webgpu',
+    () => import('../gpu/nodeDevice.ts'),
+  );
+  const device = await timer.time('adapter and device', nodeDevice);
+  return { device, release: releaseNodeDevice };
+}
+
+/**
+ * The shader library (linked WGSL from the disk cache, src/gpu/linkCacheNode.ts) with the
+ * scene kernel of the render's conditions and the accumulate kernel compiled, both at
+ * once (createComputePipelineAsync): renderScene then finds both pipelines in the
+ * device's GPU core (src/gpu/core.ts) and goes straight to uploading the scene.
+ */
+async function compileKernels(
+  device: GPUDevice,
+  resolved: ResolvedScene,
+  kernel: 'plan' | 'general',
+  timer: StartupTimer,
+): Promise<PrelinkedKernels> {
+  const cached = await timer.time('shader library', () =>
+    diskCachedKernels(loadShaderLibrary(SHADERS_DIRECTORY), LINKED_CACHE_DIRECTORY),
+  );
+  const library: PrelinkedKernels = {
+    prelinked: (path, conditions) =>
+      timer.time(`link ${path}`, () => cached.prelinked(path, conditions)),
+  };
+  const conditions = kernel === 'general' ? GENERAL_CONDITIONS : plan(resolved.scene).conditions;
+  await Promise.all([
+    timer.time('compile scene kernel', () => GpuSceneRenderer.prepare(device, library, conditions)),
+    timer.time('compile accumulate kernel', () => GpuAccumulation.prepare(device, library)),
+  ]);
+  return library;
+}
+
+export async function runRender(
+  positionals: string[],
+  flags: RenderFlags,
+  timer: StartupTimer = new StartupTimer(),
+): Promise<void> {
   if (positionals.length !== 2)
     throw new RenderInputError(
       positionals.length < 2
@@ -144,45 +215,43 @@ export async function runRender(positionals: string[], flags: RenderFlags): Prom
       `--exposure must be a number of stops in [-64, 64], got ${flags.exposure}`,
     );
 
-  let resolved;
-  try {
-    resolved = await loadSceneFile(scenePath);
-  } catch (error) {
-    if (error instanceof SceneValidationError)
-      throw new RenderInputError(`${scenePath}: ${error.message}`);
-    if ((error as NodeJS.ErrnoException).code === 'ENOENT')
-      throw new RenderInputError(`cannot read ${scenePath}: no such file`);
-    throw error;
-  }
-
+  // Dawn's device does not depend on the scene: it is requested first and made while the
+  // scene is read and validated.
   const start = performance.now();
-  let backend: Backend = { kind: 'cpu' };
-  let deviceName = 'CPU (float64 twin, one thread)';
-  let release = async (): Promise<void> => {};
-  if (backendName === 'gpu') {
-    const { nodeDevice, releaseNodeDevice } = await import('../gpu/nodeDevice.ts');
-    const device = await nodeDevice();
-    const info = (device as GPUDevice & { adapterInfo?: GPUAdapterInfo }).adapterInfo;
-    deviceName = `Dawn (webgpu npm package)${info ? `: ${[info.vendor, info.architecture, info.description].filter(Boolean).join(' ')}` : ''}`;
-    const library = diskCachedKernels(loadShaderLibrary(SHADERS_DIRECTORY), LINKED_CACHE_DIRECTORY);
-    backend = { kind: 'gpu', device, library };
-    release = releaseNodeDevice;
-  }
+  const gpu = backendName === 'gpu' ? openDevice(timer) : null;
+  // Handled below (awaited, or released after a bad scene); this keeps a failure that
+  // comes while the scene is being read from counting as an unhandled rejection.
+  gpu?.catch(() => undefined);
   let render: SceneRender;
+  let deviceName = 'CPU (float64 twin, one thread)';
   try {
+    const resolved = await timer.time('read scene', () => readScene(scenePath));
+    let backend: Backend = { kind: 'cpu' };
+    if (gpu) {
+      const { device } = await gpu;
+      const info = (device as GPUDevice & { adapterInfo?: GPUAdapterInfo }).adapterInfo;
+      deviceName = `Dawn (webgpu npm package)${info ? `: ${[info.vendor, info.architecture, info.description].filter(Boolean).join(' ')}` : ''}`;
+      const library = await compileKernels(device, resolved, kernel, timer);
+      backend = { kind: 'gpu', device, library };
+      if (flags.stats) timer.watchFirstSubmit(device);
+    }
+    const renderStart = timer.now();
     render = await renderScene(resolved, backend, {
       ...(spp !== undefined ? { spp } : {}),
       kernel,
       onPass: progressPrinter(),
     });
+    timer.record('render', renderStart);
   } finally {
-    await release();
+    if (gpu) await (await gpu.catch(() => null))?.release();
   }
   const wallMs = performance.now() - start;
   const { accumulator: acc } = render;
   const mean = acc.mean();
   await writeFile(flags.out, encodePfm(acc.width, acc.height, mean));
   if (flags.png) {
+    // pngjs only for a preview (a third of the command's module loading under tsx).
+    const { PNG } = await import('pngjs');
     const png = new PNG({ width: acc.width, height: acc.height });
     png.data = Buffer.from(toneMapRgba8(acc.width, acc.height, mean, exposure));
     await writeFile(flags.png, PNG.sync.write(png));
@@ -190,7 +259,7 @@ export async function runRender(positionals: string[], flags: RenderFlags): Prom
   if (flags.stats)
     await writeFile(
       flags.stats,
-      `${JSON.stringify(statistics(scenePath, render, deviceName, wallMs), null, 2)}\n`,
+      `${JSON.stringify(statistics(scenePath, render, deviceName, wallMs, timer.report()), null, 2)}\n`,
     );
   const passMs = render.passes.reduce((sum, p) => sum + p.milliseconds, 0);
   const pathSamples = render.spp * acc.width * acc.height;

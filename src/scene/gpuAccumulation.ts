@@ -1,7 +1,8 @@
 // The GPU store of a progressive render: per-pixel moments (shaders/moments.wesl) in a
 // storage buffer that stays on the device across passes. The scene renderer encodes
 // the accumulate kernel right after each pass of the scene kernel (encodeAdd); readouts
-// get whole-image statistics from a one-workgroup reduction (64 bytes read back);
+// get whole-image statistics from a one-workgroup reduction (64 bytes read back; its
+// kernel is compiled on the first readout);
 // widgets draw the moments straight into a canvas (accumulationView.ts); only the
 // command line and the tests read the whole image, once, with readImage. Every buffer
 // is made when the store is made: adding a pass or reducing allocates nothing.
@@ -29,59 +30,93 @@ const ACCUMULATE_KERNEL = 'kernels/scene-accumulate.wesl';
 const STATISTICS_KERNEL = 'kernels/scene-statistics.wesl';
 const ACCUMULATE_WORKGROUP = 64;
 
+/** The accumulate kernel, which every pass needs. */
 interface Kernels {
   accumulateLayout: GPUBindGroupLayout;
   accumulate: GPUComputePipeline;
-  statisticsLayout: GPUBindGroupLayout;
-  statistics: GPUComputePipeline;
+}
+
+/** The reduction, which only readouts need (statistics()). */
+interface StatisticsKernel {
+  layout: GPUBindGroupLayout;
+  pipeline: GPUComputePipeline;
 }
 
 const kernels = new WeakMap<GPUDevice, Promise<Kernels>>();
+const statisticsKernels = new WeakMap<GPUDevice, Promise<StatisticsKernel>>();
 
 function storage(binding: number, type: GPUBufferBindingType): GPUBindGroupLayoutEntry {
   return { binding, visibility: GPUShaderStage.COMPUTE, buffer: { type } };
 }
 
-/** The accumulate and reduction pipelines, compiled once per device. */
-function kernelsFor(device: GPUDevice, library: KernelLibrary): Promise<Kernels> {
-  let made = kernels.get(device);
+/** A per-device promise, forgotten when it rejects so that a later call tries again. */
+function oncePerDevice<T>(
+  cache: WeakMap<GPUDevice, Promise<T>>,
+  device: GPUDevice,
+  make: () => Promise<T>,
+): Promise<T> {
+  let made = cache.get(device);
   if (!made) {
-    made = (async () => {
-      const [accumulateCode, statisticsCode] = await Promise.all([
-        linkLibraryKernel(library, ACCUMULATE_KERNEL),
-        linkLibraryKernel(library, STATISTICS_KERNEL),
-      ]);
-      return withErrorScopes(device, 'accumulation kernels', async () => {
-        // Layouts and pipelines from the GPU core's cache.
-        const core = gpuCore(device);
-        const accumulateLayout = core.bindGroupLayout([
-          storage(0, 'read-only-storage'),
-          storage(1, 'storage'),
-          storage(2, 'uniform'),
-        ]);
-        const statisticsLayout = core.bindGroupLayout([
-          storage(0, 'read-only-storage'),
-          storage(1, 'read-only-storage'),
-          storage(2, 'read-only-storage'),
-          storage(3, 'storage'),
-          storage(4, 'uniform'),
-        ]);
-        const pipeline = (code: string, layout: GPUBindGroupLayout, entryPoint: string) =>
-          core.computePipelineAsync({ code, entryPoint, layout: core.pipelineLayout([layout]) });
-        const [accumulate, statistics] = await Promise.all([
-          pipeline(accumulateCode, accumulateLayout, 'accumulatePass'),
-          pipeline(statisticsCode, statisticsLayout, 'reduceStatistics'),
-        ]);
-        return { accumulateLayout, accumulate, statisticsLayout, statistics };
-      });
-    })();
-    const perDevice = made;
-    kernels.set(device, perDevice);
+    const perDevice = make();
+    made = perDevice;
+    cache.set(device, perDevice);
     perDevice.catch(() => {
-      if (kernels.get(device) === perDevice) kernels.delete(device);
+      if (cache.get(device) === perDevice) cache.delete(device);
     });
   }
   return made;
+}
+
+/** The accumulate pipeline, compiled once per device. */
+function kernelsFor(device: GPUDevice, library: KernelLibrary): Promise<Kernels> {
+  return oncePerDevice(kernels, device, async () => {
+    const code = await linkLibraryKernel(library, ACCUMULATE_KERNEL);
+    return withErrorScopes(device, 'accumulate kernel', async () => {
+      // Layouts and pipelines from the GPU core's cache.
+      const core = gpuCore(device);
+      const accumulateLayout = core.bindGroupLayout([
+        storage(0, 'read-only-storage'),
+        storage(1, 'storage'),
+        storage(2, 'uniform'),
+      ]);
+      const accumulate = await core.computePipelineAsync({
+        code,
+        entryPoint: 'accumulatePass',
+        layout: core.pipelineLayout([accumulateLayout]),
+      });
+      return { accumulateLayout, accumulate };
+    });
+  });
+}
+
+/**
+ * The reduction pipeline, compiled once per device on the first readout rather than with
+ * the store: Dawn on SwiftShader took 3.8–4.3 s to compile it on a loaded 2-core machine
+ * (its 256-wide tree reduction over workgroup arrays), against 1.1–1.3 s for the scene
+ * kernel of a single-scattering box and 0.1 s for the accumulate kernel, and the command
+ * line never reads statistics (issue 19: `render` start-up). A widget's first readout
+ * waits for it instead of its first frame.
+ */
+function statisticsKernelFor(device: GPUDevice, library: KernelLibrary): Promise<StatisticsKernel> {
+  return oncePerDevice(statisticsKernels, device, async () => {
+    const code = await linkLibraryKernel(library, STATISTICS_KERNEL);
+    return withErrorScopes(device, 'statistics kernel', async () => {
+      const core = gpuCore(device);
+      const layout = core.bindGroupLayout([
+        storage(0, 'read-only-storage'),
+        storage(1, 'read-only-storage'),
+        storage(2, 'read-only-storage'),
+        storage(3, 'storage'),
+        storage(4, 'uniform'),
+      ]);
+      const pipeline = await core.computePipelineAsync({
+        code,
+        entryPoint: 'reduceStatistics',
+        layout: core.pipelineLayout([layout]),
+      });
+      return { layout, pipeline };
+    });
+  });
 }
 
 export class GpuAccumulation implements Accumulation {
@@ -108,6 +143,7 @@ export class GpuAccumulation implements Accumulation {
     /** The device the moments live on. */
     readonly device: GPUDevice,
     private readonly kernels: Kernels,
+    private readonly library: KernelLibrary,
     readonly width: number,
     readonly height: number,
     moments: GPUBuffer,
@@ -136,7 +172,15 @@ export class GpuAccumulation implements Accumulation {
     });
   }
 
-  /** An empty store of width × height pixels (its kernels compiled once per device). */
+  /**
+   * Compiles the accumulate kernel without making a store (cached per device), so that a
+   * caller can compile it while it compiles the scene kernel.
+   */
+  static async prepare(device: GPUDevice, library: KernelLibrary): Promise<void> {
+    await kernelsFor(device, library);
+  }
+
+  /** An empty store of width × height pixels (its kernel compiled once per device). */
   static async create(
     device: GPUDevice,
     library: KernelLibrary,
@@ -149,7 +193,7 @@ export class GpuAccumulation implements Accumulation {
         size: MOMENT_BYTES_PER_PIXEL * width * height,
         usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
       });
-      return new GpuAccumulation(device, compiled, width, height, moments);
+      return new GpuAccumulation(device, compiled, library, width, height, moments);
     });
   }
 
@@ -210,12 +254,15 @@ export class GpuAccumulation implements Accumulation {
 
   private async reduce(reference: GpuAccumulation | undefined): Promise<ImageStatistics> {
     const { device } = this;
+    const kernel = await statisticsKernelFor(device, this.library);
+    // The first readout waits for the compiler; the store may be gone by then.
+    if (this.gone) throw new Error('the accumulation was destroyed');
     const samples = this.samples;
     const other = reference ?? this;
     let group = this.statisticsGroups.get(other.moments);
     if (!group) {
       group = device.createBindGroup({
-        layout: this.kernels.statisticsLayout,
+        layout: kernel.layout,
         entries: [
           { binding: 0, resource: { buffer: this.moments } },
           { binding: 1, resource: { buffer: other.moments } },
@@ -232,7 +279,7 @@ export class GpuAccumulation implements Accumulation {
     device.queue.writeBuffer(this.statisticsParams, 0, params.u32);
     const encoder = device.createCommandEncoder();
     const pass = encoder.beginComputePass();
-    pass.setPipeline(this.kernels.statistics);
+    pass.setPipeline(kernel.pipeline);
     pass.setBindGroup(0, group);
     pass.dispatchWorkgroups(1);
     pass.end();
@@ -273,7 +320,14 @@ export class GpuAccumulation implements Accumulation {
       size: this.moments.size,
       usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
     });
-    const copy = new GpuAccumulation(device, this.kernels, this.width, this.height, moments);
+    const copy = new GpuAccumulation(
+      device,
+      this.kernels,
+      this.library,
+      this.width,
+      this.height,
+      moments,
+    );
     const encoder = device.createCommandEncoder();
     encoder.copyBufferToBuffer(this.moments, 0, moments, 0, this.moments.size);
     encoder.copyBufferToBuffer(this.mask, 0, copy.mask, 0, this.mask.size);

@@ -25,7 +25,8 @@ function render(...args: string[]): Promise<Run> {
   return new Promise((resolve) => {
     execFile(
       'sh',
-      ['scripts/gpu-env.sh', 'node_modules/.bin/tsx', 'src/cli/main.ts', 'render', ...args],
+      // As `npm run render` runs it: the prebuilt bundle (scripts/cli.mjs).
+      ['scripts/gpu-env.sh', 'node', 'scripts/cli.mjs', 'render', ...args],
       { cwd: ROOT, env: { ...process.env, NO_COLOR: '1' }, timeout: 170_000 },
       (error, stdout, stderr) => {
         const code = error ? (typeof error.code === 'number' ? error.code : -1) : 0;
@@ -45,6 +46,12 @@ interface Stats {
   plan: { integrator: string; conditions: Record<string, boolean> };
   passes: { samples: number; milliseconds: number; timing: string }[];
   timing: { msPerSamplePerPixel: number; nsPerPathSample: number };
+  startup: {
+    nodeBootstrapMs: number;
+    phases: Record<string, { start: number; end: number }>;
+    firstPassSubmittedMs: number | null;
+    firstPassCpuMs: number | null;
+  };
   standardError: { values: (number | null)[] };
 }
 
@@ -110,6 +117,35 @@ describe('scatterbook render', () => {
     const stats = JSON.parse(readFileSync(file('furnace.json'), 'utf8')) as Stats;
     expect(stats.backend).toBe('gpu');
     expect(['gpu-timestamp', 'gpu-wall']).toContain(stats.passes[0]?.timing);
+    // Start-up phases in ms since the process started: the program loads, Dawn makes the
+    // device, both kernels compile at once, and the first pass is submitted after them.
+    const { phases, firstPassSubmittedMs, firstPassCpuMs, nodeBootstrapMs } = stats.startup;
+    const phase = (name: string) => {
+      const span = phases[name];
+      expect(span, name).toBeDefined();
+      expect(span!.end, name).toBeGreaterThanOrEqual(span!.start);
+      return span!;
+    };
+    const load = phase('load program');
+    expect(load.start).toBe(0);
+    expect(nodeBootstrapMs).toBeGreaterThan(0);
+    expect(nodeBootstrapMs).toBeLessThan(load.end);
+    const device = phase('adapter and device');
+    expect(phase('import webgpu').end).toBeLessThanOrEqual(device.start);
+    expect(device.start).toBeGreaterThanOrEqual(load.end);
+    const sceneKernel = phase('compile scene kernel');
+    const accumulateKernel = phase('compile accumulate kernel');
+    expect(sceneKernel.start).toBeGreaterThanOrEqual(device.end);
+    expect(sceneKernel.start).toBeGreaterThanOrEqual(phase('read scene').end);
+    expect(sceneKernel.start).toBeGreaterThanOrEqual(phase('shader library').end);
+    expect(accumulateKernel.start).toBeLessThan(sceneKernel.end);
+    expect(sceneKernel.start).toBeLessThan(accumulateKernel.end);
+    const rendering = phase('render');
+    expect(rendering.start).toBeGreaterThanOrEqual(Math.max(sceneKernel.end, accumulateKernel.end));
+    expect(firstPassSubmittedMs).not.toBeNull();
+    expect(firstPassSubmittedMs!).toBeGreaterThanOrEqual(rendering.start);
+    expect(firstPassSubmittedMs!).toBeLessThanOrEqual(rendering.end);
+    expect(firstPassCpuMs).toBeGreaterThan(0);
     const { rgb } = decodePfm(new Uint8Array(readFileSync(file('furnace.pfm'))));
     // The image mean is 1 within 5 pooled standard errors (8 samples per pixel are too few
     // for per-pixel bounds; tests/shaders/scene-render.test.ts checks pixels).
