@@ -19,6 +19,15 @@ export function planeCrossing(offset: number, slope: number): number {
   return clamp(offset / slope, -FINITE_LIMIT, FINITE_LIMIT);
 }
 
+/** planeCrossing per component (geometry.wesl planeCrossings, rayBoxSegment's slabs as vectors). */
+export function planeCrossings(offset: Vec3, slope: Vec3): Vec3 {
+  return [
+    planeCrossing(offset[0], slope[0]),
+    planeCrossing(offset[1], slope[1]),
+    planeCrossing(offset[2], slope[2]),
+  ];
+}
+
 export function rayBoxSegment(
   boxMin: Vec3,
   boxMax: Vec3,

@@ -891,76 +891,109 @@ export function mediumFreeFlight(
   }
 }
 
+/**
+ * A path of the path tracers between two of its segments (integrator.wesl TracedPath):
+ * where it stands and where it goes, its order and segment count, its throughput and the
+ * radiance gathered so far. The kernel advances one a segment at a time (path regeneration).
+ */
+export interface TracedPath {
+  origin: Vec3;
+  order: number;
+  direction: Vec3;
+  segments: number;
+  weight: Rgb;
+  radiance: Rgb;
+}
+
+export function tracedPathStart(origin: Vec3, direction: Vec3): TracedPath {
+  return { origin, order: 0, direction, segments: 0, weight: [1, 1, 1], radiance: [0, 0, 0] };
+}
+
+/**
+ * One segment of the volumetric path tracer (integrator.wesl pathTracingStep): free flights
+ * through the media in order, then at a scattering event (medium or surface) next-event
+ * estimation, a sampled direction and Russian roulette. True when the path has ended.
+ */
+export function pathTracingStep(scene: SceneData, path: TracedPath, state: RngState): boolean {
+  if (path.segments >= PATH_MAX_VERTICES) {
+    scene.stats.capped += 1;
+    return true;
+  }
+  path.segments += 1;
+  const rayOrigin = path.origin;
+  const rayDirection = path.direction;
+  const hit = closestSurface(scene, rayOrigin, rayDirection, RAY_T_LIMIT);
+  const list = sceneSegments(scene, rayOrigin, rayDirection, Math.min(hit.t, RAY_T_LIMIT));
+  let event = FLIGHT_PASSED;
+  let eventT = 0;
+  let eventMedium = 0;
+  for (let k = 0; k < list.count; k++) {
+    const flight = mediumFreeFlight(
+      scene,
+      sceneMedium(scene, list.media[k]!),
+      rayOrigin,
+      rayDirection,
+      list.segments[k]!,
+      path.weight,
+      state,
+    );
+    if (on(scene, 'emission')) path.radiance = add(path.radiance, flight.emitted);
+    path.weight = flight.weight;
+    if (flight.event !== FLIGHT_PASSED) {
+      event = flight.event;
+      eventT = flight.t;
+      eventMedium = list.media[k]!;
+      break;
+    }
+  }
+  if (event === FLIGHT_ABSORBED) return true;
+  if (event === FLIGHT_PASSED && hit.t === SURFACE_NO_HIT) {
+    if (on(scene, 'lightEnvironment'))
+      path.radiance = add(path.radiance, mul(path.weight, environmentRadiance(scene)));
+    return true;
+  }
+  path.order += 1;
+  if (path.order > sceneHeader(scene)[3]) return true;
+  let vertex: Vertex;
+  if (event === FLIGHT_SCATTERED) {
+    if (!on(scene, 'volumeScattering')) return true;
+    vertex = mediumVertex(
+      at(rayOrigin, rayDirection, eventT),
+      rayDirection,
+      eventMedium,
+      VERTEX_LIGHTS_ALL,
+    );
+  } else {
+    if (!on(scene, 'surfaceScattering')) return true;
+    vertex = surfaceVertex(sceneSurface(scene, hit.index), rayOrigin, rayDirection, hit.t);
+  }
+  path.radiance = add(path.radiance, mul(path.weight, vertexDirectLighting(scene, vertex, state)));
+  path.weight = mul(path.weight, vertexScatterWeight(vertex));
+  path.direction = vertexSampleDirection(scene, vertex, [rngNextFloat(state), rngNextFloat(state)]);
+  path.origin = vertex.position;
+  return russianRoulette(path, state);
+}
+
+/** Russian roulette after a vertex: survival q = min(1, max channel of w), survivors w /= q. */
+function russianRoulette(path: TracedPath, state: RngState): boolean {
+  const survival = Math.min(maxComponent(path.weight), 1);
+  if (survival < 1) {
+    if (!(rngNextFloat(state) < survival)) return true;
+    path.weight = scale(path.weight, 1 / survival);
+  }
+  return false;
+}
+
+/** Volumetric path tracing of a camera ray, segment by segment (pathTracingStep). */
 export function estimatePathTracing(
   scene: SceneData,
   origin: Vec3,
   direction: Vec3,
   state: RngState,
 ): Rgb {
-  const maxOrder = sceneHeader(scene)[3];
-  let radiance: Rgb = [0, 0, 0];
-  let weight: Rgb = [1, 1, 1];
-  let rayOrigin = origin;
-  let rayDirection = direction;
-  let order = 0;
-  for (let segmentIndex = 0; segmentIndex < PATH_MAX_VERTICES; segmentIndex++) {
-    const hit = closestSurface(scene, rayOrigin, rayDirection, RAY_T_LIMIT);
-    const list = sceneSegments(scene, rayOrigin, rayDirection, Math.min(hit.t, RAY_T_LIMIT));
-    let event = FLIGHT_PASSED;
-    let eventT = 0;
-    let eventMedium = 0;
-    for (let k = 0; k < list.count; k++) {
-      const flight = mediumFreeFlight(
-        scene,
-        sceneMedium(scene, list.media[k]!),
-        rayOrigin,
-        rayDirection,
-        list.segments[k]!,
-        weight,
-        state,
-      );
-      if (on(scene, 'emission')) radiance = add(radiance, flight.emitted);
-      weight = flight.weight;
-      if (flight.event !== FLIGHT_PASSED) {
-        event = flight.event;
-        eventT = flight.t;
-        eventMedium = list.media[k]!;
-        break;
-      }
-    }
-    if (event === FLIGHT_ABSORBED) return radiance;
-    if (event === FLIGHT_PASSED && hit.t === SURFACE_NO_HIT) {
-      if (on(scene, 'lightEnvironment'))
-        radiance = add(radiance, mul(weight, environmentRadiance(scene)));
-      return radiance;
-    }
-    order += 1;
-    if (order > maxOrder) return radiance;
-    let vertex: Vertex;
-    if (event === FLIGHT_SCATTERED) {
-      if (!on(scene, 'volumeScattering')) return radiance;
-      vertex = mediumVertex(
-        at(rayOrigin, rayDirection, eventT),
-        rayDirection,
-        eventMedium,
-        VERTEX_LIGHTS_ALL,
-      );
-    } else {
-      if (!on(scene, 'surfaceScattering')) return radiance;
-      vertex = surfaceVertex(sceneSurface(scene, hit.index), rayOrigin, rayDirection, hit.t);
-    }
-    radiance = add(radiance, mul(weight, vertexDirectLighting(scene, vertex, state)));
-    weight = mul(weight, vertexScatterWeight(vertex));
-    rayDirection = vertexSampleDirection(scene, vertex, [rngNextFloat(state), rngNextFloat(state)]);
-    rayOrigin = vertex.position;
-    const survival = Math.min(maxComponent(weight), 1);
-    if (survival < 1) {
-      if (!(rngNextFloat(state) < survival)) return radiance;
-      weight = scale(weight, 1 / survival);
-    }
-  }
-  scene.stats.capped += 1;
-  return radiance;
+  const path = tracedPathStart(origin, direction);
+  while (!pathTracingStep(scene, path, state));
+  return path.radiance;
 }
 
 // The one-medium estimators (plan condition oneHomogeneousMedium: one homogeneous medium
@@ -976,6 +1009,7 @@ export function oneMediumDirectLighting(
   medium: SceneMedium,
   position: Vec3,
   wo: Vec3,
+  state: RngState,
 ): Rgb {
   const sigmaT = add(medium.sigmaA, medium.sigmaS);
   let radiance: Rgb = [0, 0, 0];
@@ -985,11 +1019,49 @@ export function oneMediumDirectLighting(
     const phase = mediumPhaseEval(scene, medium, wo, light.direction);
     const unshadowed = light.irradiance.map((e) => e * phase) as Rgb;
     if (!anyPositive(unshadowed)) continue;
-    const [enter, exit] = mediumSegment(medium, position, light.direction, 0, light.distance);
-    const shadow = enter < exit ? transmittanceBeer(sigmaT, exit - enter) : ([1, 1, 1] as Rgb);
+    const segment = mediumSegment(medium, position, light.direction, 0, light.distance);
+    let shadow: Rgb = [1, 1, 1];
+    if (segment[0] < segment[1])
+      shadow = on(scene, 'oneGridMedium')
+        ? oneMediumRatioTracking(scene, medium, position, light.direction, segment, state)
+        : transmittanceBeer(sigmaT, segment[1] - segment[0]);
     radiance = add(radiance, mul(unshadowed, shadow));
   }
   return radiance;
+}
+
+/**
+ * A shadow ray's transmittance through the one grid medium by ratio tracking with the
+ * segment's majorant (integrator.wesl oneMediumRatioTracking): segmentWalk's tracking
+ * without emission, scattering points or view points, the same draws and counts.
+ */
+export function oneMediumRatioTracking(
+  scene: SceneData,
+  medium: SceneMedium,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+  state: RngState,
+): Rgb {
+  const sigmaT = add(medium.sigmaA, medium.sigmaS);
+  const majorant = mediumMajorant(scene, medium, origin, direction, segment);
+  let transmittance: Rgb = [1, 1, 1];
+  let t = segment[0];
+  for (let steps = 0; ; steps++) {
+    const flight = sampleFreeFlight(majorant, rngNextFloat(state));
+    if (flight >= segment[1] - t) break;
+    if (steps >= TRACKING_MAX_STEPS) {
+      scene.stats.capped += 1;
+      break;
+    }
+    t += flight;
+    const density = mediumDensity(scene, medium, at(origin, direction, t));
+    transmittance = transmittance.map(
+      (x, c) => Math.max(1 - (density * sigmaT[c]!) / majorant, 0) * x,
+    ) as Rgb;
+    if (allZero(transmittance)) break;
+  }
+  return transmittance;
 }
 
 /**
@@ -1017,46 +1089,66 @@ export function estimateSingleScatteringOneMedium(
   );
   return mul(
     weight,
-    oneMediumDirectLighting(scene, medium, at(origin, direction, enter + s), neg(direction)),
+    oneMediumDirectLighting(scene, medium, at(origin, direction, enter + s), neg(direction), state),
   );
 }
 
 /**
- * Volumetric path tracing in one homogeneous medium: free flights (mediumFreeFlight),
- * next-event estimation at every scattering vertex, phase sampling and Russian roulette;
- * a path that leaves the medium escapes (the scene has no environment and no surface).
+ * One segment of the one-medium path tracer (integrator.wesl oneMediumPathStep): a free
+ * flight (mediumFreeFlight), and at a scattering event next-event estimation
+ * (oneMediumDirectLighting), phase sampling and Russian roulette; a path that leaves the
+ * medium escapes (the scene has no environment and no surface). True when it has ended.
  */
+export function oneMediumPathStep(scene: SceneData, path: TracedPath, state: RngState): boolean {
+  const medium = sceneMedium(scene, 0);
+  if (path.segments >= PATH_MAX_VERTICES) {
+    scene.stats.capped += 1;
+    return true;
+  }
+  path.segments += 1;
+  const segment = mediumSegment(medium, path.origin, path.direction, 0, RAY_T_LIMIT);
+  if (!(segment[0] < segment[1])) return true;
+  const flight = mediumFreeFlight(
+    scene,
+    medium,
+    path.origin,
+    path.direction,
+    segment,
+    path.weight,
+    state,
+  );
+  path.weight = flight.weight;
+  if (flight.event !== FLIGHT_SCATTERED) return true;
+  path.order += 1;
+  if (path.order > sceneHeader(scene)[3]) return true;
+  const position = at(path.origin, path.direction, flight.t);
+  const wo = neg(path.direction);
+  path.radiance = add(
+    path.radiance,
+    mul(path.weight, oneMediumDirectLighting(scene, medium, position, wo, state)),
+  );
+  path.direction = mediumPhaseSample(scene, medium, wo, [rngNextFloat(state), rngNextFloat(state)]);
+  path.origin = position;
+  return russianRoulette(path, state);
+}
+
+/** Volumetric path tracing in one medium (homogeneous or grid), segment by segment. */
 export function estimatePathTracingOneMedium(
   scene: SceneData,
   origin: Vec3,
   direction: Vec3,
   state: RngState,
 ): Rgb {
-  const maxOrder = sceneHeader(scene)[3];
-  const medium = sceneMedium(scene, 0);
-  let radiance: Rgb = [0, 0, 0];
-  let weight: Rgb = [1, 1, 1];
-  let rayOrigin = origin;
-  let rayDirection = direction;
-  for (let order = 1; order <= PATH_MAX_VERTICES; order++) {
-    const segment = mediumSegment(medium, rayOrigin, rayDirection, 0, RAY_T_LIMIT);
-    if (!(segment[0] < segment[1])) return radiance;
-    const flight = mediumFreeFlight(scene, medium, rayOrigin, rayDirection, segment, weight, state);
-    weight = flight.weight;
-    if (flight.event !== FLIGHT_SCATTERED || order > maxOrder) return radiance;
-    const position = at(rayOrigin, rayDirection, flight.t);
-    const wo = neg(rayDirection);
-    radiance = add(radiance, mul(weight, oneMediumDirectLighting(scene, medium, position, wo)));
-    rayDirection = mediumPhaseSample(scene, medium, wo, [rngNextFloat(state), rngNextFloat(state)]);
-    rayOrigin = position;
-    const survival = Math.min(maxComponent(weight), 1);
-    if (survival < 1) {
-      if (!(rngNextFloat(state) < survival)) return radiance;
-      weight = scale(weight, 1 / survival);
-    }
-  }
-  scene.stats.capped += 1;
-  return radiance;
+  const path = tracedPathStart(origin, direction);
+  while (!oneMediumPathStep(scene, path, state));
+  return path.radiance;
+}
+
+/** One segment of the path tracer the plan linked (integrator.wesl tracedPathStep). */
+export function tracedPathStep(scene: SceneData, path: TracedPath, state: RngState): boolean {
+  return on(scene, 'oneHomogeneousMedium') || on(scene, 'oneGridMedium')
+    ? oneMediumPathStep(scene, path, state)
+    : pathTracingStep(scene, path, state);
 }
 
 export function estimateRadiance(
@@ -1067,7 +1159,7 @@ export function estimateRadiance(
 ): Rgb {
   const oneMedium = on(scene, 'oneHomogeneousMedium');
   if (on(scene, 'pathTracing'))
-    return oneMedium
+    return oneMedium || on(scene, 'oneGridMedium')
       ? estimatePathTracingOneMedium(scene, origin, direction, state)
       : estimatePathTracing(scene, origin, direction, state);
   if (on(scene, 'volumeScattering') && oneMedium && !on(scene, 'equiangular'))
