@@ -449,23 +449,50 @@ export function sceneTransmittance(
     const medium = sceneMedium(scene, i);
     const segment = mediumSegment(medium, origin, direction, 0, tMax);
     if (segment[0] < segment[1]) {
-      const majorant = mediumMajorant(scene, medium, origin, direction, segment);
-      const none = emptyPoints();
-      const walk = segmentWalk(
-        scene,
-        medium,
-        origin,
-        direction,
-        segment,
-        majorant,
-        false,
-        false,
-        none,
-        state,
+      transmittance = mul(
+        transmittance,
+        segmentTransmittance(scene, medium, origin, direction, segment, state),
       );
-      transmittance = mul(transmittance, walk.transmittance);
       if (allZero(transmittance)) return transmittance;
     }
+  }
+  return transmittance;
+}
+
+/**
+ * The transmittance of one medium's segment (integrator.wesl segmentTransmittance):
+ * segmentWalk's transmittance without emission, scattering or view points (the same
+ * draws, lookups and caps): Beer's law under the closed form for a homogeneous medium,
+ * else ratio tracking with the segment's majorant.
+ */
+export function segmentTransmittance(
+  scene: SceneData,
+  medium: SceneMedium,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+  state: RngState,
+): Rgb {
+  const sigmaT = add(medium.sigmaA, medium.sigmaS);
+  if (on(scene, 'homogeneousClosedForm') && medium.kind === SCENE_MEDIUM_HOMOGENEOUS)
+    return transmittanceBeer(sigmaT, segment[1] - segment[0]);
+  let transmittance: Rgb = [1, 1, 1];
+  const majorant = mediumMajorant(scene, medium, origin, direction, segment);
+  if (!(majorant > 0) || !(segment[1] > segment[0])) return transmittance;
+  let t = segment[0];
+  for (let steps = 0; ; steps++) {
+    const flight = sampleFreeFlight(majorant, rngNextFloat(state));
+    if (flight >= segment[1] - t) break;
+    if (steps >= TRACKING_MAX_STEPS) {
+      scene.stats.capped += 1;
+      break;
+    }
+    t += flight;
+    const density = mediumDensity(scene, medium, at(origin, direction, t));
+    transmittance = transmittance.map(
+      (x, c) => Math.max(1 - (density * sigmaT[c]!) / majorant, 0) * x,
+    ) as Rgb;
+    if (allZero(transmittance)) break;
   }
   return transmittance;
 }
@@ -1011,7 +1038,6 @@ export function oneMediumDirectLighting(
   wo: Vec3,
   state: RngState,
 ): Rgb {
-  const sigmaT = add(medium.sigmaA, medium.sigmaS);
   let radiance: Rgb = [0, 0, 0];
   const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
   for (let i = 0; i < count; i++) {
@@ -1020,48 +1046,13 @@ export function oneMediumDirectLighting(
     const unshadowed = light.irradiance.map((e) => e * phase) as Rgb;
     if (!anyPositive(unshadowed)) continue;
     const segment = mediumSegment(medium, position, light.direction, 0, light.distance);
-    let shadow: Rgb = [1, 1, 1];
-    if (segment[0] < segment[1])
-      shadow = on(scene, 'oneGridMedium')
-        ? oneMediumRatioTracking(scene, medium, position, light.direction, segment, state)
-        : transmittanceBeer(sigmaT, segment[1] - segment[0]);
+    const shadow: Rgb =
+      segment[0] < segment[1]
+        ? segmentTransmittance(scene, medium, position, light.direction, segment, state)
+        : [1, 1, 1];
     radiance = add(radiance, mul(unshadowed, shadow));
   }
   return radiance;
-}
-
-/**
- * A shadow ray's transmittance through the one grid medium by ratio tracking with the
- * segment's majorant (integrator.wesl oneMediumRatioTracking): segmentWalk's tracking
- * without emission, scattering points or view points, the same draws and counts.
- */
-export function oneMediumRatioTracking(
-  scene: SceneData,
-  medium: SceneMedium,
-  origin: Vec3,
-  direction: Vec3,
-  segment: readonly [number, number],
-  state: RngState,
-): Rgb {
-  const sigmaT = add(medium.sigmaA, medium.sigmaS);
-  const majorant = mediumMajorant(scene, medium, origin, direction, segment);
-  let transmittance: Rgb = [1, 1, 1];
-  let t = segment[0];
-  for (let steps = 0; ; steps++) {
-    const flight = sampleFreeFlight(majorant, rngNextFloat(state));
-    if (flight >= segment[1] - t) break;
-    if (steps >= TRACKING_MAX_STEPS) {
-      scene.stats.capped += 1;
-      break;
-    }
-    t += flight;
-    const density = mediumDensity(scene, medium, at(origin, direction, t));
-    transmittance = transmittance.map(
-      (x, c) => Math.max(1 - (density * sigmaT[c]!) / majorant, 0) * x,
-    ) as Rgb;
-    if (allZero(transmittance)) break;
-  }
-  return transmittance;
 }
 
 /**

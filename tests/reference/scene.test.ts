@@ -443,7 +443,8 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'pathTracingStep',
       'sceneSegments',
       'vertexDirectLighting',
-      'oneMediumRatioTracking',
+      'segmentWalk',
+      'gridDensityTrilinear',
     ])
       expect(defines(multiple, fn), fn).toBe(false);
   });
@@ -455,7 +456,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       media: [{ ...fog(), type: 'grid', grid: { dimensions: [1, 1, 1], density: [1] } }],
       lights: [{ type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] }],
     });
-    for (const fn of ['oneMediumPathStep', 'oneMediumRatioTracking', 'gridDensityTrilinear'])
+    for (const fn of ['oneMediumPathStep', 'segmentTransmittance', 'gridDensityTrilinear'])
       expect(defines(code, fn), fn).toBe(true);
     for (const fn of ['pathTracingStep', 'sceneSegments', 'segmentWalk', 'vertexDirectLighting'])
       expect(defines(code, fn), fn).toBe(false);
