@@ -1038,21 +1038,39 @@ export function oneMediumDirectLighting(
   wo: Vec3,
   state: RngState,
 ): Rgb {
+  // The kernel drops the loop under the plan's oneLight; one light gives the same sum.
   let radiance: Rgb = [0, 0, 0];
   const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
-  for (let i = 0; i < count; i++) {
-    const light = deltaLightSample(scene, sceneLight(scene, i), position);
-    const phase = mediumPhaseEval(scene, medium, wo, light.direction);
-    const unshadowed = light.irradiance.map((e) => e * phase) as Rgb;
-    if (!anyPositive(unshadowed)) continue;
-    const segment = mediumSegment(medium, position, light.direction, 0, light.distance);
-    const shadow: Rgb =
-      segment[0] < segment[1]
-        ? segmentTransmittance(scene, medium, position, light.direction, segment, state)
-        : [1, 1, 1];
-    radiance = add(radiance, mul(unshadowed, shadow));
-  }
+  for (let i = 0; i < count; i++)
+    radiance = add(
+      radiance,
+      oneMediumLightContribution(scene, medium, sceneLight(scene, i), position, wo, state),
+    );
   return radiance;
+}
+
+/**
+ * One light's term of oneMediumDirectLighting, p(ωo, ωℓ)·Eℓ·Tℓ. The kernel evaluates
+ * Beer's law without branches (an empty segment has d = 0, T = 1); the result is the same.
+ */
+export function oneMediumLightContribution(
+  scene: SceneData,
+  medium: SceneMedium,
+  light: Light,
+  position: Vec3,
+  wo: Vec3,
+  state: RngState,
+): Rgb {
+  const sample = deltaLightSample(scene, light, position);
+  const phase = mediumPhaseEval(scene, medium, wo, sample.direction);
+  const unshadowed = sample.irradiance.map((e) => e * phase) as Rgb;
+  if (!anyPositive(unshadowed)) return [0, 0, 0];
+  const segment = mediumSegment(medium, position, sample.direction, 0, sample.distance);
+  const shadow: Rgb =
+    segment[0] < segment[1]
+      ? segmentTransmittance(scene, medium, position, sample.direction, segment, state)
+      : [1, 1, 1];
+  return mul(unshadowed, shadow);
 }
 
 /**

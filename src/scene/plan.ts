@@ -15,6 +15,7 @@ import type { MediumDescription, SceneDescription } from './types.ts';
 export const CONDITION_NAMES = [
   'media',
   'gridMedia',
+  'sphereMedia',
   'homogeneousClosedForm',
   'emission',
   'volumeScattering',
@@ -30,6 +31,7 @@ export const CONDITION_NAMES = [
   'equiangular',
   'oneHomogeneousMedium',
   'oneGridMedium',
+  'oneLight',
 ] as const;
 
 export type ConditionName = (typeof CONDITION_NAMES)[number];
@@ -48,6 +50,7 @@ function phaseConditions(
 export const GENERAL_CONDITIONS: Conditions = {
   media: true,
   gridMedia: true,
+  sphereMedia: true,
   homogeneousClosedForm: false,
   emission: true,
   volumeScattering: true,
@@ -62,6 +65,7 @@ export const GENERAL_CONDITIONS: Conditions = {
   equiangular: false,
   oneHomogeneousMedium: false,
   oneGridMedium: false,
+  oneLight: false,
 };
 
 export type Integrator = 'emission-absorption' | 'single-scattering' | 'path-tracing';
@@ -305,6 +309,9 @@ export function plan(scene: SceneDescription): Plan {
   const conditions: Conditions = {
     media: media.length > 0,
     gridMedia: grids,
+    // Ray–sphere code only where a medium is a sphere: on SwiftShader every branch of the
+    // hot loops costs (shaders/integrator.wesl mediumSegment).
+    sphereMedia: media.some((m) => m.bounds.type === 'sphere'),
     homogeneousClosedForm: homogeneous,
     emission,
     volumeScattering,
@@ -321,6 +328,9 @@ export function plan(scene: SceneDescription): Plan {
     equiangular,
     oneHomogeneousMedium,
     oneGridMedium,
+    // Exactly one light: the one-medium kernels' next-event estimation without a loop
+    // over the lights (1.2× paths/s on SwiftShader for the issue-19 box).
+    oneLight: scene.lights.length === 1,
   };
   return { integrator, scatteringOrder: order, effects, conditions };
 }

@@ -325,6 +325,22 @@ describe('the planner', () => {
     ).toMatch(/one grid medium under delta lights/);
   });
 
+  it('branches a scene cannot take are left out: ray–sphere code without spheres, the light loop for one light', () => {
+    const sun = { type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] };
+    const point = { type: 'point', position: [0, 2, 0], intensity: [1, 1, 1] };
+    const conditions = (json: Record<string, unknown>) =>
+      planOf({ ...base(), media: [fog()], lights: [sun], ...json }).conditions;
+    expect(conditions({})).toMatchObject({ sphereMedia: false, oneLight: true });
+    expect(conditions({ lights: [sun, point] }).oneLight).toBe(false);
+    expect(conditions({ lights: [] }).oneLight).toBe(false);
+    const ball = fog({ bounds: { type: 'sphere', center: [0, 0, 0], radius: 0.5 } });
+    expect(conditions({ media: [ball] }).sphereMedia).toBe(true);
+    const apart = fog({ bounds: { type: 'sphere', center: [3, 0, 0], radius: 0.5 } });
+    expect(conditions({ media: [fog(), apart] }).sphereMedia).toBe(true);
+    // The general kernel renders any scene: spheres and a loop over the lights.
+    expect(GENERAL_CONDITIONS).toMatchObject({ sphereMedia: true, oneLight: false });
+  });
+
   it('order ≥ 2 with something that scatters: the path tracer', () => {
     expect(plan(parseScene(exampleSceneJson('cloud-sky'))).integrator).toBe('path-tracing');
     const surfacesOnly = plan(parseScene(exampleSceneJson('spheres-on-floor')));
@@ -493,6 +509,16 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       expect(defines(code, fn), fn).toBe(false);
   });
 
+  it('ray–sphere code only for a sphere medium', async () => {
+    const sun = { type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] };
+    const box = await link({ ...base(), media: [fog()], lights: [sun] });
+    expect(defines(box, 'raySphereSegment')).toBe(false);
+    expect(defines(box, 'rayBoxSegment')).toBe(true);
+    const ball = fog({ bounds: { type: 'sphere', center: [0, 0, 0], radius: 0.5 } });
+    const sphere = await link({ ...base(), media: [ball], lights: [sun] });
+    expect(defines(sphere, 'raySphereSegment')).toBe(true);
+  });
+
   it('the general kernel links every effect', async () => {
     const code = await linkSceneKernel(SHADER_LIBRARY, GENERAL_CONDITIONS);
     for (const fn of [
@@ -504,6 +530,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'lightSampleSpot',
       'surfaceHitDistance',
       'sampleFreeFlight',
+      'raySphereSegment',
     ])
       expect(defines(code, fn), fn).toBe(true);
   });
