@@ -49,6 +49,8 @@ export class LobeView {
   private wireframe: WireframeWorker | null = null;
   /** The backing store's size: a canvas handed to the worker cannot be resized from the page. */
   private size = { width: 960, height: 540 };
+  /** The canvas's CSS width, from the resize observer (0 until it has reported). */
+  private cssWidth = 0;
   private destroyed = false;
   /** No backend yet: nothing is drawn, so the canvas can still take either context. */
   private mode: 'none' | 'gpu' | 'cpu' = 'none';
@@ -160,6 +162,7 @@ export class LobeView {
       ? device.blockSize
       : Math.round(entry.contentRect.height * devicePixelRatio);
     if (width < 2 || height < 2) return;
+    this.cssWidth = entry.contentRect.width;
     const shrink = Math.min(1, Math.sqrt(MAX_PIXELS / (width * height)));
     width = Math.max(1, Math.floor(width * shrink));
     height = Math.max(1, Math.floor(height * shrink));
@@ -293,8 +296,9 @@ export class LobeView {
 
   /** Backing pixels per CSS pixel (line widths of the CPU wireframe). */
   private pixelScale(): number {
-    const css = this.canvas.clientWidth;
-    return css > 0 ? this.size.width / css : devicePixelRatio;
+    // The observer's width, not clientWidth: reading that in a draw forced a layout of
+    // the page, 5–22 ms of a drag's tasks on a loaded two-core machine (dragProfile).
+    return this.cssWidth > 0 ? this.size.width / this.cssWidth : devicePixelRatio;
   }
 
   /** The beam and forward labels where the camera puts their points, in per cent of the canvas. */
