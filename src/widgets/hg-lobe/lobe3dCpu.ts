@@ -27,6 +27,13 @@ const HG_COLOUR = [235, 150, 70] as const;
 const COMPARE_COLOUR = [115, 166, 255] as const;
 const BEAM_COLOUR = 'rgb(240, 226, 190)';
 
+/** The 2D context of a canvas in the page or of an OffscreenCanvas in a worker. */
+type Context2D = CanvasRenderingContext2D | OffscreenCanvasRenderingContext2D;
+
+/** An OffscreenCanvas (a worker has no HTMLCanvasElement to test against). */
+const isOffscreen = (canvas: HTMLCanvasElement | OffscreenCanvas): canvas is OffscreenCanvas =>
+  typeof OffscreenCanvas !== 'undefined' && canvas instanceof OffscreenCanvas;
+
 interface Segment {
   a: SurfacePoint;
   b: SurfacePoint;
@@ -50,7 +57,7 @@ const range = (count: number, step: number, from = 0): number[] =>
   Array.from({ length: count }, (_, k) => from + k * step);
 
 function strokeSegments(
-  context: CanvasRenderingContext2D,
+  context: Context2D,
   camera: Camera,
   segments: readonly Segment[],
   colour: readonly [number, number, number],
@@ -74,7 +81,7 @@ function strokeSegments(
 
 /** The beam: a thick shaft from the tail and a triangular head ending at the scattering point. */
 function drawBeam(
-  context: CanvasRenderingContext2D,
+  context: Context2D,
   camera: Camera,
   bounds: ReturnType<typeof sceneBounds>,
   scale: number,
@@ -123,7 +130,7 @@ function drawBeam(
  * the far side of each lobe faintly. `scale` is the device pixel ratio.
  */
 export function drawLobeWireframe(
-  canvas: HTMLCanvasElement,
+  canvas: HTMLCanvasElement | OffscreenCanvas,
   inputs: HgLobeInputs,
   logFloor: number,
   orbit: Orbit,
@@ -135,7 +142,10 @@ export function drawLobeWireframe(
   // software adapter (SwiftShader) that took 0.6–2.7 s per wireframe, during which the
   // page produced no animation frame at all, so every other picture of the widget
   // waited too (issue 23: hg-lobe's CPU first picture 1.0–2.1 s, 150–230 ms without).
-  const context = canvas.getContext('2d', { willReadFrequently: true });
+  // The same holds for an OffscreenCanvas in a worker: rasterised in the worker.
+  const context: Context2D | null = isOffscreen(canvas)
+    ? canvas.getContext('2d', { willReadFrequently: true })
+    : canvas.getContext('2d', { willReadFrequently: true });
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const bounds = sceneBounds(inputs, logFloor);
   const camera = orbitCamera(bounds, orbit, canvas.width / canvas.height);

@@ -1,6 +1,7 @@
 // The 3D view of <sb-hg-lobe>: a canvas that shows the lobe r(θ)·ω in space, drawn
 // by the GPU (lobe3dGpu.ts) or, on the CPU fallback, as the twin's wireframe
-// (lobe3dCpu.ts). It turns with a pointer drag or the arrow keys (Home resets),
+// (lobe3dCpu.ts), in a worker on the canvas's OffscreenCanvas where the browser
+// has one (wireframeWorker.ts), else in the page. It turns with a pointer drag or the arrow keys (Home resets),
 // follows its CSS size and the device pixel ratio, and redraws only when the
 // lobe, the view or the size changed. Labels for the beam and the forward
 // direction are laid over the canvas where the camera projects them.
@@ -19,6 +20,7 @@ import {
 } from './lobe3d.ts';
 import { drawLobeWireframe } from './lobe3dCpu.ts';
 import { HgLobe3dGpu } from './lobe3dGpu.ts';
+import { WireframeWorker } from './wireframeWorker.ts';
 import type { HgLobeInputs } from './model.ts';
 
 /** Radians per CSS pixel of drag, and per arrow-key press (10°). */
@@ -43,6 +45,13 @@ export class LobeView {
   private orbit: Orbit = DEFAULT_ORBIT;
   private scene: LobeScene | null = null;
   private gpu: HgLobe3dGpu | null = null;
+  /** The CPU wireframe's worker, which owns the canvas once handed over (null: drawn in the page). */
+  private wireframe: WireframeWorker | null = null;
+  /** The backing store's size: a canvas handed to the worker cannot be resized from the page. */
+  private size = { width: 960, height: 540 };
+  /** The canvas's CSS width, from the resize observer (0 until it has reported). */
+  private cssWidth = 0;
+  private destroyed = false;
   /** No backend yet: nothing is drawn, so the canvas can still take either context. */
   private mode: 'none' | 'gpu' | 'cpu' = 'none';
   private frameRequested = false;
@@ -86,8 +95,8 @@ export class LobeView {
     canvas.tabIndex = 0;
     canvas.setAttribute('role', 'img');
     canvas.setAttribute('aria-label', '3D view of the phase function lobe');
-    canvas.width = 960;
-    canvas.height = 540;
+    canvas.width = this.size.width;
+    canvas.height = this.size.height;
     return canvas;
   }
 
@@ -108,21 +117,30 @@ export class LobeView {
 
   /** Draws the CPU wireframe from now on, on a fresh canvas (a WebGPU canvas cannot become 2D). */
   useCpu(): void {
+    // Every CPU frame of the widget says so; only the switch draws (a refinement stage
+    // of the histogram does not change the lobe).
+    if (this.mode === 'cpu') return;
     if (this.mode === 'gpu') {
       this.gpu?.destroy();
       this.gpu = null;
-      const fresh = this.createCanvas();
-      fresh.width = this.canvas.width;
-      fresh.height = this.canvas.height;
-      const focused = document.activeElement === this.canvas;
-      this.resizeObserver.unobserve(this.canvas);
-      this.canvas.replaceWith(fresh);
-      this.canvas = fresh;
-      this.observe();
-      if (focused) fresh.focus();
+      this.replaceCanvas();
     }
     this.mode = 'cpu';
+    // Drawn and rasterised in a worker: in the page a picture took 20–120 ms of its
+    // thread on a loaded two-core machine, the longest tasks of a slider drag (issue 23).
+    this.wireframe = WireframeWorker.start(this.canvas);
     this.schedule();
+  }
+
+  /** A fresh canvas in the old one's place (one with a context cannot take another). */
+  private replaceCanvas(): void {
+    const fresh = this.createCanvas();
+    const focused = document.activeElement === this.canvas;
+    this.resizeObserver.unobserve(this.canvas);
+    this.canvas.replaceWith(fresh);
+    this.canvas = fresh;
+    this.observe();
+    if (focused) fresh.focus();
   }
 
   get backend(): 'none' | 'gpu' | 'cpu' {
@@ -144,12 +162,17 @@ export class LobeView {
       ? device.blockSize
       : Math.round(entry.contentRect.height * devicePixelRatio);
     if (width < 2 || height < 2) return;
+    this.cssWidth = entry.contentRect.width;
     const shrink = Math.min(1, Math.sqrt(MAX_PIXELS / (width * height)));
     width = Math.max(1, Math.floor(width * shrink));
     height = Math.max(1, Math.floor(height * shrink));
-    if (width === this.canvas.width && height === this.canvas.height) return;
-    this.canvas.width = width;
-    this.canvas.height = height;
+    if (width === this.size.width && height === this.size.height) return;
+    this.size = { width, height };
+    // A canvas handed to the worker is resized there, with the next picture.
+    if (!this.wireframe) {
+      this.canvas.width = width;
+      this.canvas.height = height;
+    }
     this.schedule();
   }
 
@@ -239,11 +262,24 @@ export class LobeView {
     this.redraw = false;
     const { inputs, logFloor } = scene;
     const bounds = sceneBounds(inputs, logFloor);
-    const aspect = this.canvas.width / this.canvas.height;
+    const aspect = this.size.width / this.size.height;
     try {
       if (this.mode === 'gpu' && this.gpu) {
         const camera = orbitCamera(bounds, this.orbit, aspect);
         await this.gpu.draw(packView(inputs, logFloor, bounds, camera), inputs.compare !== 'none');
+      } else if (this.wireframe) {
+        try {
+          await this.wireframe.draw(this.size, inputs, logFloor, this.orbit, this.pixelScale());
+        } catch (error) {
+          if (this.destroyed) return;
+          // The worker failed (or could not start): draw in the page from now on, on a
+          // fresh canvas, since the old one belongs to the worker.
+          console.warn('hg-lobe: the wireframe worker failed; drawing in the page', error);
+          this.wireframe.destroy();
+          this.wireframe = null;
+          this.replaceCanvas();
+          drawLobeWireframe(this.canvas, inputs, logFloor, this.orbit, this.pixelScale());
+        }
       } else {
         drawLobeWireframe(this.canvas, inputs, logFloor, this.orbit, this.pixelScale());
       }
@@ -260,8 +296,9 @@ export class LobeView {
 
   /** Backing pixels per CSS pixel (line widths of the CPU wireframe). */
   private pixelScale(): number {
-    const css = this.canvas.clientWidth;
-    return css > 0 ? this.canvas.width / css : devicePixelRatio;
+    // The observer's width, not clientWidth: reading that in a draw forced a layout of
+    // the page, 5–22 ms of a drag's tasks on a loaded two-core machine (dragProfile).
+    return this.cssWidth > 0 ? this.size.width / this.cssWidth : devicePixelRatio;
   }
 
   /** The beam and forward labels where the camera puts their points, in per cent of the canvas. */
@@ -333,6 +370,8 @@ export class LobeView {
   }
 
   destroy(): void {
+    this.destroyed = true;
+    this.wireframe?.destroy();
     this.resizeObserver.disconnect();
     this.visibility.disconnect();
     this.gpu?.destroy();
