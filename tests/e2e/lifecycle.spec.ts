@@ -7,9 +7,19 @@ import { expect, test, type Page } from '@playwright/test';
 import { WIDGET_DEFINITIONS } from '../../src/widgets/catalog.ts';
 import { trackErrors } from './support.ts';
 
-/** Attributes a widget needs to be meaningful on a page of its own. */
+/**
+ * Attributes a widget needs to be meaningful on a page of its own, and smaller pictures
+ * or fewer samples for the figures whose first frame takes many seconds on SwiftShader
+ * (the ones tests/e2e/embed.spec.ts makes cheaper the same way): what is checked here is
+ * that a moved widget draws again, which does not depend on the size of its work. The
+ * translucent room's first frame took 18 s at its default 48×48 pixels (10 s at 16×16,
+ * on a loaded machine).
+ */
 const REQUIRED_ATTRIBUTES: Readonly<Record<string, Record<string, string>>> = {
   exercise: { exercise: 'beer-law' },
+  'translucent-room': { size: '16', spp: '2' },
+  'translucent-render': { size: '32', spp: '6' },
+  'volume-path-tracer': { spp: '1' },
 };
 
 const NAMES = WIDGET_DEFINITIONS.map((definition) => definition.entry.name);
@@ -70,7 +80,13 @@ test('every widget draws again after it is moved to another parent', async ({ pa
       window.scrollTo(0, 0);
     }, `lifecycle-${name}`);
     await expect
-      .poll(() => renderedCount(page, name), { timeout: 30_000, message: `${name} draws` })
+      .poll(() => renderedCount(page, name), {
+        timeout: 30_000,
+        // Every 100 ms: the default back-off (up to 1 s) adds about half a second to each
+        // of the two waits of every widget, one after the other.
+        intervals: [100],
+        message: `${name} draws`,
+      })
       .toBeGreaterThan(0);
     const before = await renderedCount(page, name);
     // Moved again, to another parent: it must draw again without any input.
@@ -80,7 +96,11 @@ test('every widget draws again after it is moved to another parent', async ({ pa
       window.scrollTo(0, 0);
     }, `lifecycle-${name}`);
     await expect
-      .poll(() => renderedCount(page, name), { timeout: 30_000, message: `${name} draws again` })
+      .poll(() => renderedCount(page, name), {
+        timeout: 30_000,
+        intervals: [100],
+        message: `${name} draws again`,
+      })
       .toBeGreaterThan(before);
     // Off the page for good: it stops (and a defined widget releases its resources).
     await page.evaluate((id) => document.getElementById(id)?.remove(), `lifecycle-${name}`);

@@ -1,8 +1,12 @@
 // Offline reading (issue 18): one visit saves the whole book, and then, with the
 // web server shut down and the browser offline, every page opens and every figure
-// draws from the service worker's precache. And the update flow: a new version is
-// downloaded while a saved copy is shown, the page says so, Reload switches to it,
-// and another open tab says it is now the older version.
+// draws from the service worker's precache. Each chapter and the appendix, once its
+// figures have drawn, also gets the book's page checks (typeset math, table of
+// contents, chapter links, no console errors, axe-core in both themes; formerly one
+// test per page in book.spec.ts, which loaded and drew every page a second time).
+// And the update flow: a new version is downloaded while a saved copy is shown, the
+// page says so, Reload switches to it, and another open tab says it is now the older
+// version.
 //
 // These tests serve the build themselves (not through Playwright's shared
 // webServer) so that they can stop the server — a page that still reached the
@@ -10,30 +14,49 @@
 // base path it was built for (the manifest's scope), so a sub-path build
 // (`vite build --base /courses/cmsc740/book/`) is checked the same way.
 import { createServer, type Server } from 'node:http';
-import { existsSync, readdirSync, readFileSync, statSync } from 'node:fs';
+import { existsSync, readdirSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { extname, join, normalize, relative, resolve } from 'node:path';
 import type { AddressInfo } from 'node:net';
 import AxeBuilder from '@axe-core/playwright';
-import { expect, test, type Browser, type BrowserContext, type Page } from '@playwright/test';
+import {
+  expect,
+  test,
+  type Browser,
+  type BrowserContext,
+  type Page,
+  type TestInfo,
+} from '@playwright/test';
 import {
   APPENDIX_PAGE,
+  axeViolations,
+  bookPages,
   canvasStats,
   chapterPages,
+  SUB_PATH,
+  subPathBuild,
   trackErrors,
   waitForPicture,
   WIDGET_SELECTOR,
 } from './support.ts';
 
-const DIST = resolve(process.env['E2E_DIST'] ?? 'dist');
+/** A build to serve: its folder, and the base path it was made for. */
+interface Build {
+  dist: string;
+  base: string;
+}
 
-/** The base path the build was made for: the web app manifest's scope. */
-function buildBase(): string {
-  const manifest = JSON.parse(readFileSync(join(DIST, 'manifest.webmanifest'), 'utf8')) as {
+/** The build in `dist`, with the base path it was made for: the web app manifest's scope. */
+function buildIn(dist: string): Build {
+  const folder = resolve(dist);
+  const manifest = JSON.parse(readFileSync(join(folder, 'manifest.webmanifest'), 'utf8')) as {
     scope?: string;
   };
   const scope = manifest.scope ?? '/';
-  return scope.endsWith('/') ? scope : `${scope}/`;
+  return { dist: folder, base: scope.endsWith('/') ? scope : `${scope}/` };
 }
+
+/** The build the other specs serve (at the root, by default). */
+const ROOT_BUILD = buildIn(process.env['E2E_DIST'] ?? 'dist');
 
 const TYPES: Record<string, string> = {
   '.html': 'text/html; charset=utf-8',
@@ -60,7 +83,7 @@ type Overrides = Map<string, (body: Buffer) => Buffer>;
  * the page shows as the date of its saved copy.
  */
 async function serveBuild(
-  base: string,
+  { dist, base }: Build,
   overrides: Overrides = new Map(),
 ): Promise<{ server: Server; origin: string }> {
   const server = createServer((request, response) => {
@@ -71,8 +94,8 @@ async function serveBuild(
     }
     let relativePath = normalize(path.slice(base.length)).replace(/^(\.\.[/\\])+/, '');
     if (relativePath === '' || relativePath.endsWith('/')) relativePath += 'index.html';
-    const file = join(DIST, relativePath);
-    if (!file.startsWith(DIST) || !existsSync(file) || !statSync(file).isFile()) {
+    const file = join(dist, relativePath);
+    if (!file.startsWith(dist) || !existsSync(file) || !statSync(file).isFile()) {
       response.writeHead(404).end();
       return;
     }
@@ -103,11 +126,11 @@ async function waitForControl(page: Page): Promise<void> {
   );
 }
 
-/** Every built file, relative to the build folder. */
-function builtFiles(dir = DIST): string[] {
+/** Every built file under `dir`, relative to the build folder `dist`. */
+function builtFiles(dist: string, dir = dist): string[] {
   return readdirSync(dir).flatMap((name) => {
     const path = join(dir, name);
-    return statSync(path).isDirectory() ? builtFiles(path) : [relative(DIST, path)];
+    return statSync(path).isDirectory() ? builtFiles(dist, path) : [relative(dist, path)];
   });
 }
 
@@ -171,7 +194,178 @@ async function expectFiguresDrawn(page: Page, widgets = page.locator(WIDGET_SELE
   await expect(page.locator('.sb-notice--error')).toHaveCount(0);
 }
 
-const base = buildBase();
+/**
+ * The build this spec reads offline, page by page: the one for a deep sub-path
+ * (support.ts, subPathBuild), the stricter case: its service worker's scope, its
+ * precache and every URL a page or figure fetches must stay under the base path (a URL
+ * that escaped it is not in the precache, so it fails offline). tests/e2e/publish.spec.ts
+ * leaves its browser pass over the chapters and the deck to this spec. The root build
+ * gets the saving and scope checks, and one chapter offline (the last describe below).
+ */
+let build: Build = ROOT_BUILD;
+let madeSubPathBuild = false;
+
+test.beforeAll(() => {
+  test.setTimeout(240_000);
+  const made = subPathBuild();
+  madeSubPathBuild = made.made;
+  build = buildIn(made.dist);
+  expect(build.base, 'the sub-path build is made for its path').toBe(SUB_PATH);
+});
+
+test.afterAll(() => {
+  if (madeSubPathBuild) rmSync(build.dist, { recursive: true, force: true });
+});
+
+/**
+ * The shader-library appendix has one entry per library function (328), each written by
+ * the same template (src/book/build/appendix.ts: heading, signature, prose with math,
+ * twin note). axe checks the page with the first two entries of each module (about 50):
+ * every part the template writes, in every module, at a twentieth of the cost. The
+ * table of contents and every entry's id were checked on the whole page before.
+ */
+async function sampleAppendixEntries(page: Page): Promise<void> {
+  const kept = await page.evaluate(() => {
+    const perModule = new Map<string, number>();
+    let count = 0;
+    for (const entry of document.querySelectorAll('section.api-entry')) {
+      const module = entry.id.split('-')[0] ?? '';
+      const seen = (perModule.get(module) ?? 0) + 1;
+      perModule.set(module, seen);
+      if (seen > 2) entry.remove();
+      else count += 1;
+    }
+    return count;
+  });
+  expect(kept).toBeGreaterThan(20);
+}
+
+/** The book's pages (chapters, then the appendix): the reading order of the pager links. */
+const BOOK_PAGES = bookPages();
+
+/**
+ * The book's checks of one page (chapter or appendix), once its figures have drawn their
+ * first pictures (each widget's own spec checks its final numbers): typeset math, a table
+ * of contents whose entries each lead to one element, the pager links, and axe-core in
+ * the light theme (the full WCAG 2.1 AA set), then in the dark theme switched with the
+ * page's own button, as a reader does (the colour rules only: axeViolations). The page is
+ * the saved copy the service worker serves, which is the built file (the precache holds
+ * every built file, checked by the first test here), so the raw HTML is read from it.
+ */
+async function expectBookPage(page: Page, index: number): Promise<void> {
+  const chapter = BOOK_PAGES[index]!;
+  await expect(page.locator('nav.toc a').first()).toBeVisible();
+  // KaTeX ran at build time: the HTML already holds typeset math.
+  const raw = readFileSync(join(build.dist, chapter.path), 'utf8');
+  if (chapter.hasMath) expect(raw, 'typeset math').toContain('class="katex');
+  expect(raw, 'no raw TeX').not.toMatch(/\$\$|\\label\{/);
+  // Every entry leads to exactly one element of the page (one evaluation: the appendix's
+  // table of contents has over 200 entries, each a round trip as a locator check).
+  const tocTargets = await page.evaluate(() =>
+    [...document.querySelectorAll('nav.toc a')].map((link) => {
+      const id = (link.getAttribute('href') ?? '').slice(1);
+      return { id, count: document.querySelectorAll(`[id="${CSS.escape(id)}"]`).length };
+    }),
+  );
+  expect(tocTargets.length, 'table of contents').toBeGreaterThan(0);
+  expect(
+    tocTargets.filter((target) => target.count !== 1),
+    'table of contents entries without exactly one target',
+  ).toEqual([]);
+  // Links are relative to their page: under the build's base they lead to its pages.
+  const pathOf = (link: string): Promise<string> =>
+    page.locator(link).evaluate((a) => (a as HTMLAnchorElement).pathname);
+  const previous = BOOK_PAGES[index - 1];
+  const next = BOOK_PAGES[index + 1];
+  if (previous)
+    expect(await pathOf('a[rel="prev"]'), 'previous link').toBe(
+      `${build.base}${previous.path.slice(1)}`,
+    );
+  if (next)
+    expect(await pathOf('a[rel="next"]'), 'next link').toBe(`${build.base}${next.path.slice(1)}`);
+  if (chapter.slug === APPENDIX_PAGE.slug) await sampleAppendixEntries(page);
+  expect(await axeViolations(page), 'light theme').toEqual([]);
+  await page.locator('.theme-toggle').click();
+  await expect(page.locator('html')).toHaveAttribute('data-theme', 'dark');
+  expect(await axeViolations(page, true), 'dark theme').toEqual([]);
+  // The choice is stored for the whole context: the pages after this one start light.
+  await page.evaluate(() => localStorage.removeItem('scatterbook:theme'));
+}
+
+/**
+ * Serves `served`, opens its home page in a new context, and checks that one visit saves
+ * every built file (but NOT_PRECACHED) under the base path, in a worker whose scope is the
+ * base path; then stops the server and takes the context offline, where the page says it
+ * shows the saved copy. Returns that context (the caller closes it); on a failed check the
+ * server and the context are closed here.
+ */
+async function saveThenGoOffline(
+  browser: Browser,
+  served: Build,
+  info: TestInfo,
+): Promise<BrowserContext> {
+  const { server, origin } = await serveBuild(served);
+  const context = await newContext(browser, origin);
+  try {
+    await saveAndCheck(context, served, info);
+  } catch (error) {
+    await context.close();
+    await closeServer(server);
+    throw error;
+  }
+  // Now the network goes away entirely: the server stops, the browser is offline.
+  await closeServer(server);
+  await context.setOffline(true);
+  return context;
+}
+
+async function saveAndCheck(
+  context: BrowserContext,
+  { base, dist }: Build,
+  info: TestInfo,
+): Promise<void> {
+  const page = await context.newPage();
+  const errors = trackErrors(page);
+  const started = Date.now();
+  await page.goto(`${base}index.html`);
+  await waitForControl(page);
+  const cached = await page.evaluate(async () => {
+    const urls: string[] = [];
+    for (const name of await caches.keys()) {
+      for (const request of await (await caches.open(name)).keys()) {
+        const url = new URL(request.url);
+        url.searchParams.delete('__WB_REVISION__');
+        urls.push(url.pathname);
+      }
+    }
+    return urls;
+  });
+  const expected = builtFiles(dist)
+    .filter((file) => !NOT_PRECACHED.test(file.split('/').pop() ?? ''))
+    .map((file) => `${base}${file}`);
+  expect(cached.length).toBeGreaterThan(0);
+  expect(expected.filter((url) => !cached.includes(url))).toEqual([]);
+  const bytes = expected.reduce(
+    (sum, url) => sum + statSync(join(dist, url.slice(base.length))).size,
+    0,
+  );
+  info.annotations.push({
+    type: 'precache',
+    description: `${expected.length} files, ${(bytes / 2 ** 20).toFixed(2)} MiB, saved in ${Date.now() - started} ms under ${base}`,
+  });
+  // The worker scope is the base path, so a book under a sub-path leaves the
+  // rest of its host alone.
+  const scope = await page.evaluate(async () => {
+    const registration = await navigator.serviceWorker.getRegistration();
+    return registration ? new URL(registration.scope).pathname : null;
+  });
+  expect(scope).toBe(base);
+  // Online, with nothing newer: the status line says nothing.
+  await expect(page.locator('.sb-offline-status')).toBeEmpty();
+  expect(errors).toEqual([]);
+  await page.close();
+}
+
 const pages = [
   { slug: 'home', path: 'index.html' },
   ...[...chapterPages(), APPENDIX_PAGE].map((chapter) => ({
@@ -183,75 +377,41 @@ const pages = [
 test.describe('offline reading', () => {
   test.describe.configure({ mode: 'serial' });
   let context: BrowserContext;
-  let server: Server | null = null;
 
   test.afterAll(async () => {
     await context?.close();
-    if (server) await closeServer(server);
   });
 
   test('one visit saves every page, script, style, font and data file of the build', async ({
     browser,
   }, info) => {
-    const served = await serveBuild(base);
-    server = served.server;
-    context = await newContext(browser, served.origin);
+    context = await saveThenGoOffline(browser, build, info);
     const page = await context.newPage();
-    const errors = trackErrors(page);
-    const started = Date.now();
-    await page.goto(`${base}index.html`);
-    await waitForControl(page);
-    const cached = await page.evaluate(async () => {
-      const urls: string[] = [];
-      for (const name of await caches.keys()) {
-        for (const request of await (await caches.open(name)).keys()) {
-          const url = new URL(request.url);
-          url.searchParams.delete('__WB_REVISION__');
-          urls.push(url.pathname);
-        }
-      }
-      return urls;
-    });
-    const expected = builtFiles()
-      .filter((file) => !NOT_PRECACHED.test(file.split('/').pop() ?? ''))
-      .map((file) => `${base}${file}`);
-    expect(cached.length).toBeGreaterThan(0);
-    expect(expected.filter((url) => !cached.includes(url))).toEqual([]);
-    const bytes = expected.reduce(
-      (sum, url) => sum + statSync(join(DIST, url.slice(base.length))).size,
-      0,
-    );
-    info.annotations.push({
-      type: 'precache',
-      description: `${expected.length} files, ${(bytes / 2 ** 20).toFixed(2)} MiB, saved in ${Date.now() - started} ms under ${base}`,
-    });
-    // The worker scope is the base path, so a book under a sub-path leaves the
-    // rest of its host alone.
-    const scope = await page.evaluate(async () => {
-      const registration = await navigator.serviceWorker.getRegistration();
-      return registration ? new URL(registration.scope).pathname : null;
-    });
-    expect(scope).toBe(base);
-    // Online, with nothing newer: the status line says nothing.
-    await expect(page.locator('.sb-offline-status')).toBeEmpty();
-    expect(errors).toEqual([]);
-    // Now the network goes away entirely: the server stops, the browser is offline.
-    await closeServer(served.server);
-    server = null;
-    await context.setOffline(true);
+    await page.goto(`${build.base}index.html`);
     await expect(page.locator('.sb-offline-message--offline')).toContainText(
       /^Offline — showing the saved copy from .+\.$/,
     );
+    await page.close();
   });
 
   for (const entry of pages) {
-    test(`offline: ${entry.slug} opens and its figures draw`, async () => {
-      test.setTimeout(180_000);
+    const bookIndex = BOOK_PAGES.findIndex((chapter) => chapter.slug === entry.slug);
+    const title =
+      bookIndex < 0
+        ? `offline: ${entry.slug} opens and its figures draw`
+        : `offline: ${entry.slug} opens and its figures draw; typeset math, table of contents, chapter links, no console errors, axe-core in both themes`;
+    test(title, async () => {
+      // The page checks add two axe-core runs after the figures have drawn (the appendix is long).
+      test.setTimeout(bookIndex < 0 ? 180_000 : 300_000);
       const page = await context.newPage();
+      // Each page starts in the light theme: the dark-theme check of the page before
+      // stored the reader's choice (src/book/theme.ts) in the shared context.
+      await page.emulateMedia({ colorScheme: 'light' });
+      await page.addInitScript(() => localStorage.removeItem('scatterbook:theme'));
       const errors = trackErrors(page);
       const failed: string[] = [];
       page.on('requestfailed', (request) => failed.push(request.url()));
-      await page.goto(`${base}${entry.path}`);
+      await page.goto(`${build.base}${entry.path}`);
       await expect(page.locator('main h1')).toBeVisible();
       const status = page.getByRole('status').filter({ hasText: 'Offline' });
       await expect(status).toContainText(/^Offline — showing the saved copy from .+\.$/);
@@ -273,6 +433,11 @@ test.describe('offline reading', () => {
       expect(fonts.loaded).toBeGreaterThanOrEqual(2);
       expect(failed).toEqual([]);
       expect(errors).toEqual([]);
+      if (bookIndex >= 0) {
+        await expectBookPage(page, bookIndex);
+        expect(failed).toEqual([]);
+        expect(errors).toEqual([]);
+      }
       await page.close();
     });
   }
@@ -281,7 +446,7 @@ test.describe('offline reading', () => {
     test.setTimeout(120_000);
     const page = await context.newPage();
     const errors = trackErrors(page);
-    await page.goto(`${base}deck.html`);
+    await page.goto(`${build.base}deck.html`);
     const slides = page.locator('.deck-slide');
     const count = await slides.count();
     expect(count).toBeGreaterThanOrEqual(2);
@@ -308,7 +473,7 @@ test.describe('offline reading', () => {
   test('offline: the status line passes the accessibility check in both themes', async () => {
     const info = test.info();
     const page = await context.newPage();
-    await page.goto(`${base}index.html`);
+    await page.goto(`${build.base}index.html`);
     await expect(page.getByRole('status')).toContainText('Offline — showing the saved copy from');
     expect(await statusLineViolations(page, (name) => info.outputPath(name))).toEqual([]);
     await page.close();
@@ -318,10 +483,38 @@ test.describe('offline reading', () => {
     const page = await context.newPage();
     const chapter = pages.find((p) => p.slug.startsWith('02-'));
     // The precache ignores queries (?backend=cpu selects the CPU twin).
-    await page.goto(`${base}${chapter?.path ?? ''}?backend=cpu#content`);
+    await page.goto(`${build.base}${chapter?.path ?? ''}?backend=cpu#content`);
     await expect(page.locator('main h1')).toBeVisible();
     await expectFiguresDrawn(page);
     await page.close();
+  });
+});
+
+test.describe('the build the other specs serve', () => {
+  // Offline, its saving and scope are checked, and one chapter (every page and figure
+  // offline is checked above, under the stricter sub-path): its page, modules, kernels
+  // and fonts come from the saved copy.
+  test('one visit saves every built file under its base, and a chapter then opens and draws offline', async ({
+    browser,
+  }, info) => {
+    test.setTimeout(180_000);
+    const context = await saveThenGoOffline(browser, ROOT_BUILD, info);
+    try {
+      const page = await context.newPage();
+      const errors = trackErrors(page);
+      const failed: string[] = [];
+      page.on('requestfailed', (request) => failed.push(request.url()));
+      const chapter = pages.find((p) => p.slug.startsWith('02-'));
+      await page.goto(`${ROOT_BUILD.base}${chapter?.path ?? ''}`);
+      await expect(page.getByRole('status').filter({ hasText: 'Offline' })).toContainText(
+        /^Offline — showing the saved copy from .+\.$/,
+      );
+      await expectFiguresDrawn(page);
+      expect(failed).toEqual([]);
+      expect(errors).toEqual([]);
+    } finally {
+      await context.close();
+    }
   });
 });
 
@@ -331,14 +524,14 @@ test.describe('updates', () => {
   }) => {
     test.setTimeout(120_000);
     const overrides: Overrides = new Map();
-    const { server, origin } = await serveBuild(base, overrides);
+    const { server, origin } = await serveBuild(build, overrides);
     const context = await newContext(browser, origin);
     try {
       const first = await context.newPage();
-      await first.goto(`${base}index.html`);
+      await first.goto(`${build.base}index.html`);
       await waitForControl(first);
       const second = await context.newPage();
-      await second.goto(`${base}index.html`);
+      await second.goto(`${build.base}index.html`);
       await expect(second.locator('.sb-offline-status')).toBeEmpty();
 
       // Deploy a next version: a changed home page, and a worker whose precache
@@ -360,7 +553,7 @@ test.describe('updates', () => {
       );
       expect(
         overrides
-          .get('sw.js')?.(readFileSync(join(DIST, 'sw.js')))
+          .get('sw.js')?.(readFileSync(join(build.dist, 'sw.js')))
           .toString(),
       ).toContain('next-version');
       // The browser looks for a new worker on navigations and on the page's hourly check.
@@ -375,7 +568,7 @@ test.describe('updates', () => {
       await expect(first.locator('meta[name="sb-version"]')).toHaveCount(0);
       // A page opened now is still served from the saved copy, and says so as well.
       const third = await context.newPage();
-      await third.goto(`${base}index.html`);
+      await third.goto(`${build.base}index.html`);
       await expect(third.locator('meta[name="sb-version"]')).toHaveCount(0);
       await expect(third.getByRole('status')).toContainText(
         'A new version of the book is available',

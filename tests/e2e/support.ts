@@ -1,6 +1,10 @@
 // Shared helpers of the end-to-end tests.
 import AxeBuilder from '@axe-core/playwright';
-import { readdirSync, readFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { createHash } from 'node:crypto';
+import { mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, type Locator, type Page } from '@playwright/test';
 import { PNG } from 'pngjs';
@@ -38,6 +42,62 @@ export function chapterPages(): { slug: string; path: string; hasMath: boolean }
       const shown = source.replace(/^```quiz\n[\s\S]*?^```$/gm, '');
       return { slug, path: `/chapters/${slug}.html`, hasMath: shown.includes('$') };
     });
+}
+
+/** The deep sub-path a course's web space may serve the book under (issue 18). */
+export const SUB_PATH = '/courses/cmsc740/book/';
+
+/**
+ * The book built for SUB_PATH: E2E_SUB_DIST when set (scripts/test.mjs builds it once for
+ * publish.spec.ts and offline.spec.ts), else built now (20–40 s) into a temporary folder
+ * that the caller removes (`made`). Call it from a beforeAll with a timeout of minutes.
+ * Two workers may ask at once: the build writes the generated pages into the checkout
+ * (src/book/build/generate.ts, writeBook), so builds of one checkout take turns, by a
+ * lock folder (mkdir is atomic); a lock left by a killed run is taken after 5 minutes.
+ */
+export function subPathBuild(): { dist: string; made: boolean } {
+  const root = fileURLToPath(new URL('../..', import.meta.url));
+  const given = process.env['E2E_SUB_DIST'];
+  if (given) return { dist: resolve(root, given), made: false };
+  const checkout = createHash('sha256').update(root).digest('hex').slice(0, 16);
+  const lock = join(tmpdir(), `scatterbook-subpath-build-${checkout}.lock`);
+  const wait = new Int32Array(new SharedArrayBuffer(4));
+  for (;;) {
+    try {
+      mkdirSync(lock);
+      break;
+    } catch {
+      let age = 0;
+      try {
+        age = Date.now() - statSync(lock).mtimeMs;
+      } catch {
+        continue; // released meanwhile
+      }
+      if (age > 300_000) rmSync(lock, { recursive: true, force: true });
+      else Atomics.wait(wait, 0, 0, 1000);
+    }
+  }
+  try {
+    const dist = mkdtempSync(join(tmpdir(), 'scatterbook-subpath-'));
+    execFileSync(
+      'npx',
+      [
+        'vite',
+        'build',
+        '--base',
+        SUB_PATH,
+        '--outDir',
+        dist,
+        '--emptyOutDir',
+        '--logLevel',
+        'warn',
+      ],
+      { cwd: root, stdio: ['ignore', 'ignore', 'inherit'], timeout: 220_000 },
+    );
+    return { dist, made: true };
+  } finally {
+    rmSync(lock, { recursive: true, force: true });
+  }
 }
 
 /** Collects console errors and uncaught exceptions of a page from now on. */
@@ -102,6 +162,9 @@ export async function waitForPicture(widget: Locator): Promise<void> {
   await expect
     .poll(async () => Number((await widget.getAttribute('data-rendered')) ?? '0'), {
       timeout: 30_000,
+      // Every 250 ms at most: the default back-off (to 1 s) adds about half a second to
+      // each of the many figures the page sweeps wait for one after the other.
+      intervals: [100, 250],
     })
     .toBeGreaterThanOrEqual(1);
 }
