@@ -631,10 +631,7 @@ export abstract class WidgetElement extends HTMLElement {
     };
     this.frameRequest = {
       frame: requestAnimationFrame(start),
-      // Not in a hidden tab: there frames stop on purpose, and so should the work.
-      timer: setTimeout(() => {
-        if (document.visibilityState !== 'hidden') start();
-      }, FRAME_WAIT_MS),
+      timer: setTimeout(start, FRAME_WAIT_MS),
     };
   }
 
