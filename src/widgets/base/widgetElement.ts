@@ -27,17 +27,6 @@ import { siteUrl } from './siteUrl.ts';
 
 import type { Preset } from './definition.ts';
 
-/**
- * Longest wait for an animation frame before a render starts anyway. Frames normally
- * come every 16 ms and the render starts with one; on a software adapter (SwiftShader)
- * Chromium's GPU process composites the page on the CPU and was busy 75–90 % of a CPU-
- * fallback drag, so frames came 0.1–1 s apart (bench/dragProfile.ts --trace,
- * bench/firstPictureProbe.ts), and an input's first picture waited that long before any
- * of its work began (issue 23). Started after this, the work overlaps the late frame,
- * which then shows its result.
- */
-const FRAME_WAIT_MS = 50;
-
 export type { Preset };
 
 /** Hash keys a widget understands besides its parameters. */
@@ -88,8 +77,7 @@ export abstract class WidgetElement extends HTMLElement {
   private visible = false;
   private dirty = true;
   private rendering = false;
-  /** The render asked for: the next animation frame, or FRAME_WAIT_MS, whichever comes first. */
-  private frameRequest: { frame: number; timer: ReturnType<typeof setTimeout> } | null = null;
+  private frameRequest: number | null = null;
   private observer: IntersectionObserver | null = null;
   private presentButton: HTMLButtonElement | null = null;
   protected widgetId = '';
@@ -158,8 +146,7 @@ export abstract class WidgetElement extends HTMLElement {
     this.observer = null;
     this.visible = false;
     if (this.frameRequest !== null) {
-      cancelAnimationFrame(this.frameRequest.frame);
-      clearTimeout(this.frameRequest.timer);
+      cancelAnimationFrame(this.frameRequest);
       this.frameRequest = null;
       this.dirty = true;
     }
@@ -613,26 +600,15 @@ export abstract class WidgetElement extends HTMLElement {
     await this.renderNow();
   }
 
-  /**
-   * Renders on the next frame if visible (or after FRAME_WAIT_MS, when frames come
-   * late); otherwise when it scrolls into view.
-   */
+  /** Renders on the next frame if visible; otherwise when it scrolls into view. */
   protected scheduleRender(): void {
     this.dirty = true;
     if (!this.isConnected || !(this.visible || this.isPresenting()) || this.frameRequest !== null)
       return;
-    const start = (): void => {
-      const request = this.frameRequest;
-      if (request === null) return;
-      cancelAnimationFrame(request.frame);
-      clearTimeout(request.timer);
+    this.frameRequest = requestAnimationFrame(() => {
       this.frameRequest = null;
       void this.renderNow();
-    };
-    this.frameRequest = {
-      frame: requestAnimationFrame(start),
-      timer: setTimeout(start, FRAME_WAIT_MS),
-    };
+    });
   }
 
   private async renderNow(): Promise<void> {
