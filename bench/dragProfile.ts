@@ -10,10 +10,10 @@
 // (layout, paint, canvas rasterisation), "(garbage collector)" V8's.
 //   npx tsx bench/dragProfile.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--over=40]
 import { chromium } from 'playwright-core';
-import { preview } from 'vite';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
 import { dragValues } from './interactionJudge.ts';
+import { servePreview, markFirstSlider } from './previewPage.ts';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 
@@ -53,21 +53,13 @@ function frameName(node: ProfileNode): string {
     : functionName || '(anonymous)';
 }
 
-const server = await preview({
-  root: ROOT,
-  configFile: false,
-  preview: { port: 0, strictPort: false },
-  build: { outDir: dist },
-  logLevel: 'error',
-});
-const address = server.httpServer.address();
-const port = typeof address === 'object' && address ? address.port : 4173;
+const { server, base } = await servePreview(ROOT, dist);
 const browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
 try {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   const page = await context.newPage();
   const query = backend === 'cpu' ? '?backend=cpu' : '';
-  await page.goto(`http://localhost:${port}/embed/${widget}.html${query}`);
+  await page.goto(`${base}/embed/${widget}.html${query}`);
   const tag = `sb-${widget}`;
   await page.locator(tag).first().scrollIntoViewIfNeeded();
   const settled = async (): Promise<void> => {
@@ -85,20 +77,7 @@ try {
     console.log('not settled after 60 s');
   };
   await settled();
-  const slider = await page.evaluate((t) => {
-    const el = document.querySelector(t) as HTMLElement;
-    const control = [...el.querySelectorAll<HTMLInputElement>('.sb-controls input[type=range]')]
-      .filter((c) => !c.disabled && c.checkVisibility())
-      .at(0);
-    if (!control) throw new Error('no slider');
-    control.dataset['probe'] = '1';
-    return {
-      min: Number(control.min),
-      max: Number(control.max),
-      step: Number(control.step) || 1,
-      value: Number(control.value),
-    };
-  }, tag);
+  const slider = await markFirstSlider(page, tag);
   const values = dragValues(slider, 20);
   const cdp = await context.newCDPSession(page);
   await cdp.send('Profiler.enable');

@@ -13,10 +13,10 @@
 // page's next animation frame came (the picture is on screen with that frame).
 //   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N]
 import { chromium } from 'playwright-core';
-import { preview } from 'vite';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
 import { changeValues } from './interactionJudge.ts';
+import { servePreview, markFirstSlider } from './previewPage.ts';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 
@@ -120,22 +120,14 @@ const widget = option('widget');
 const backend = option('backend', 'gpu');
 const afterSettleMs = Number(option('after-settle-ms', '0'));
 
-const server = await preview({
-  root: ROOT,
-  configFile: false,
-  preview: { port: 0, strictPort: false },
-  build: { outDir: dist },
-  logLevel: 'error',
-});
-const address = server.httpServer.address();
-const port = typeof address === 'object' && address ? address.port : 4173;
+const { server, base } = await servePreview(ROOT, dist);
 const browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
 try {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   await context.addInitScript(WRAP);
   const page = await context.newPage();
   const query = backend === 'cpu' ? '?backend=cpu' : '';
-  await page.goto(`http://localhost:${port}/embed/${widget}.html${query}`);
+  await page.goto(`${base}/embed/${widget}.html${query}`);
   const tag = `sb-${widget}`;
   await page.locator(tag).first().scrollIntoViewIfNeeded();
   // Settled as the bench judges it: data-settled "true" for 300 ms, or (a build without
@@ -164,20 +156,7 @@ try {
     await page.waitForTimeout(100);
   }
   if (afterSettleMs > 0) await page.waitForTimeout(afterSettleMs);
-  const slider = await page.evaluate((t) => {
-    const el = document.querySelector(t) as HTMLElement;
-    const control = [...el.querySelectorAll<HTMLInputElement>('.sb-controls input[type=range]')]
-      .filter((c) => !c.disabled && c.checkVisibility())
-      .at(0);
-    if (!control) throw new Error('no slider');
-    control.dataset['probe'] = '1';
-    return {
-      min: Number(control.min),
-      max: Number(control.max),
-      step: Number(control.step) || 1,
-      value: Number(control.value),
-    };
-  }, tag);
+  const slider = await markFirstSlider(page, tag);
   const [next] = changeValues(slider, slider.value);
   // A string, not a function: tsx names arrow functions with a helper the page lacks.
   const INPUT = `async ({ tag, next }) => {

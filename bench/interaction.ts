@@ -28,7 +28,6 @@ import { existsSync } from 'node:fs';
 import { loadavg } from 'node:os';
 import { fileURLToPath } from 'node:url';
 import { chromium, type Browser, type Page } from 'playwright-core';
-import { preview } from 'vite';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
 import { WIDGET_CATALOG } from '../src/widgets/catalog.ts';
 import {
@@ -48,6 +47,7 @@ import {
   type ShownFrame,
 } from './interactionJudge.ts';
 import { median, printTable, type BenchTable } from './table.ts';
+import { servePreview } from './previewPage.ts';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 
@@ -499,16 +499,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
   const dist = options.dist ?? `${ROOT}dist`;
   const widgets = options.widgets ?? interactionWidgets();
   const loadAtStart = loadavg();
-  const server = await preview({
-    root: ROOT,
-    configFile: false,
-    preview: { port: 0, strictPort: false },
-    build: { outDir: dist },
-    logLevel: 'error',
-  });
-  const address = server.httpServer.address();
-  const port = typeof address === 'object' && address ? address.port : 4173;
-  const base = `http://localhost:${port}`;
+  const { server, base } = await servePreview(ROOT, dist);
   let browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
   const tables: BenchTable[] = [];
   const started = Date.now();

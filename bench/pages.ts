@@ -15,9 +15,9 @@ import { readFileSync, readdirSync, statSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { gzipSync } from 'node:zlib';
 import { chromium, type Browser } from 'playwright-core';
-import { preview } from 'vite';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
 import { median, printTable, type BenchTable } from './table.ts';
+import { servePreview } from './previewPage.ts';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 
@@ -138,16 +138,7 @@ export async function benchPages(options: {
   repeats: number;
 }): Promise<BenchTable[]> {
   const dist = options.dist ?? `${ROOT}dist`;
-  const server = await preview({
-    root: ROOT,
-    configFile: false,
-    preview: { port: 0, strictPort: false },
-    build: { outDir: dist },
-    logLevel: 'error',
-  });
-  const address = server.httpServer.address();
-  const port = typeof address === 'object' && address ? address.port : 4173;
-  const base = `http://localhost:${port}`;
+  const { server, base } = await servePreview(ROOT, dist);
   const browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
   const bytes: BenchTable['rows'] = [];
   const frames: BenchTable['rows'] = [];
