@@ -10,6 +10,7 @@ import {
   canvasStats,
   parseDisplayed,
   readout,
+  recordStagesFromNextInput,
   toggleTheme,
   trackErrors,
   waitForRender,
@@ -162,22 +163,13 @@ test('after an input the panorama is a lower-resolution preview first, then sett
   const errors = trackErrors(page);
   const widget = await openSky(page, { 'sun-elevation': '30' });
   // Every stage the widget shows, in order, from the next input on.
-  await widget.evaluate((element) => {
-    const stages: string[] = [];
-    (window as unknown as { skyStages: string[] }).skyStages = stages;
-    new MutationObserver(() => stages.push(element.getAttribute('data-stage') ?? '')).observe(
-      element,
-      { attributes: true, attributeFilter: ['data-frames'] },
-    );
-  });
   const slider = widget.locator('input[type="range"][name="sun-elevation"]');
+  const stagesShown = await recordStagesFromNextInput(widget, slider);
   await slider.focus();
   for (let i = 0; i < 10; i++) await page.keyboard.press('ArrowRight');
   await expect(controlValue(widget, 'sun-elevation')).toHaveValue('35');
   await waitForSettled(widget, 120_000);
-  const stages = await page.evaluate(
-    () => (window as unknown as { skyStages: string[] }).skyStages,
-  );
+  const stages = await stagesShown();
   expect(stages[0]).toMatch(/^Preview: \d+×\d+ pixels$/);
   expect(stages.at(-1)).toBe('640×480 pixels');
   expect(await widget.locator('canvas.sb-canvas').getAttribute('width')).toBe('640');

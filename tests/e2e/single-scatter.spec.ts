@@ -9,6 +9,7 @@ import { expect, test, type Locator, type Page } from '@playwright/test';
 import {
   canvasStats,
   parseDisplayed,
+  recordStagesFromNextInput,
   trackErrors,
   waitForRender,
   waitForSettled,
@@ -178,16 +179,11 @@ test('presentation mode: F enters, number keys recall the presets, Esc leaves', 
 test('an input shows a one-pass preview of the new scene first, then refines', async ({ page }) => {
   const errors = trackErrors(page);
   const widget = await openWidget(page, { spp: '16' });
-  await widget.evaluate((element) => {
-    const seen: string[] = [];
-    (window as unknown as { stages: string[] }).stages = seen;
-    new MutationObserver(() => seen.push(element.dataset['stage'] ?? '')).observe(element, {
-      attributeFilter: ['data-frames'],
-    });
-  });
-  await control(widget, 'occluder').selectOption('box');
+  const occluder = control(widget, 'occluder');
+  const stagesShown = await recordStagesFromNextInput(widget, occluder);
+  await occluder.selectOption('box');
   await waitForSettled(widget, 120_000);
-  const stages = await page.evaluate(() => (window as unknown as { stages: string[] }).stages);
+  const stages = await stagesShown();
   // The preview is the new run's first pass (the old scene's samples did not carry on);
   // the next frame adds passes and the reference for the new scene starts.
   expect(stages[0]).toBe('Preview: 1 of 16 spp');

@@ -181,6 +181,35 @@ export async function framesShown(widget: Locator): Promise<number> {
   return Number((await widget.getAttribute('data-frames')) ?? '0');
 }
 
+/**
+ * Starts recording the stage (data-stage) of every frame `widget` shows from the next
+ * input on `control` (a change or an input event) on, and returns the reader of that
+ * list. Recording starts with the input itself, in the page: a widget still refining
+ * its old picture in the background may show such a frame between this call and the
+ * test's input, and that frame is not the input's first picture.
+ */
+export async function recordStagesFromNextInput(
+  widget: Locator,
+  control: Locator,
+): Promise<() => Promise<string[]>> {
+  const host = await widget.elementHandle();
+  await control.evaluate((input, element) => {
+    const seen: string[] = [];
+    (window as unknown as { sbStages: string[] }).sbStages = seen;
+    let armed = false;
+    const arm = (): void => {
+      armed = true;
+    };
+    input.addEventListener('input', arm);
+    input.addEventListener('change', arm);
+    new MutationObserver(() => {
+      if (armed && element) seen.push(element.getAttribute('data-stage') ?? '');
+    }).observe(element ?? input, { attributeFilter: ['data-frames'] });
+  }, host);
+  return () =>
+    widget.page().evaluate(() => [...(window as unknown as { sbStages: string[] }).sbStages]);
+}
+
 export interface CanvasStats {
   /** Standard deviation of luminance over the pixels (0–255). */
   luminanceDeviation: number;

@@ -11,6 +11,7 @@ import {
   canvasStats,
   parseDisplayed,
   readout,
+  recordStagesFromNextInput,
   trackErrors,
   waitForRender,
   waitForSettled,
@@ -126,17 +127,12 @@ test('switching to the puffy cloud shows a preview first, then settles; the old 
 }) => {
   const errors = trackErrors(page);
   const widget = await openWidget(page);
-  // Every stage label the widget shows from here on, in order (data-stage, set per frame).
-  await widget.evaluate((element) => {
-    const seen: string[] = [];
-    (window as unknown as { stages: string[] }).stages = seen;
-    new MutationObserver(() => seen.push(element.dataset['stage'] ?? '')).observe(element, {
-      attributeFilter: ['data-frames'],
-    });
-  });
-  await control(widget, 'scene').selectOption('cloud');
+  // Every stage label the widget shows from the input on, in order (data-stage, set per frame).
+  const scene = control(widget, 'scene');
+  const stagesShown = await recordStagesFromNextInput(widget, scene);
+  await scene.selectOption('cloud');
   await waitForSettled(widget, 120_000);
-  const stages = await page.evaluate(() => (window as unknown as { stages: string[] }).stages);
+  const stages = await stagesShown();
   // The first frame after the input is the new scene's preview (fewer samples than a
   // frame's 4: the sphere's count did not carry on), then a whole frame settles it.
   expect(stages[0]).toMatch(/^Preview: [1-3] of 4 spp$/);
