@@ -118,6 +118,23 @@ test('presentation mode: F enters, the widget fills the screen, number keys reca
   await expect(shell).toHaveClass(/is-presenting/);
   await widget.getByRole('button', { name: 'Exit presentation' }).click();
   await expect(shell).not.toHaveClass(/is-presenting/);
+  // Esc in full screen is the browser's: it leaves full screen without passing the key on
+  // (Chrome), and presentation mode ends with it. F was a user gesture, so full screen
+  // was granted; leaving it from the page stands in for the browser's own Esc.
+  await page.keyboard.press('f');
+  await expect(shell).toHaveClass(/is-presenting/);
+  await expect.poll(() => page.evaluate(() => document.fullscreenElement !== null)).toBe(true);
+  await page.evaluate(() => document.exitFullscreen());
+  await expect(shell).not.toHaveClass(/is-presenting/);
+  await expect.poll(() => page.url()).not.toContain('present=1');
+  // Esc ends it wherever the focus is (here on the page's body, outside the widget).
+  await page.keyboard.press('f');
+  await expect(shell).toHaveClass(/is-presenting/);
+  await page.evaluate(() => {
+    (document.activeElement as HTMLElement | null)?.blur();
+  });
+  await page.keyboard.press('Escape');
+  await expect(shell).not.toHaveClass(/is-presenting/);
 });
 
 test('the heterogeneous profile shows the multiplicative property', async ({ page }) => {

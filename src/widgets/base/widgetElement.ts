@@ -95,6 +95,7 @@ export abstract class WidgetElement extends HTMLElement {
       // Moved in the DOM (or put back): the observer was dropped on disconnect, so
       // observe again and draw again once on screen.
       this.observe();
+      if (this.isPresenting()) document.addEventListener('keydown', this.documentEscapeListener);
       this.scheduleRender();
       return;
     }
@@ -145,6 +146,7 @@ export abstract class WidgetElement extends HTMLElement {
     this.observer?.disconnect();
     this.observer = null;
     this.visible = false;
+    document.removeEventListener('keydown', this.documentEscapeListener);
     if (this.frameRequest !== null) {
       cancelAnimationFrame(this.frameRequest);
       this.frameRequest = null;
@@ -245,6 +247,7 @@ export abstract class WidgetElement extends HTMLElement {
     if (readout) this.buildReadout(readout);
     // The same listener object each time, so a shell built again adds no second one.
     this.addEventListener('keydown', this.keyListener);
+    root.addEventListener('fullscreenchange', this.fullscreenListener);
   }
 
   private buildControl(parameter: NumberParameter | ChoiceParameter): HTMLElement {
@@ -529,11 +532,21 @@ export abstract class WidgetElement extends HTMLElement {
     this.presentButton?.setAttribute('aria-pressed', String(on));
     if (this.presentButton) this.presentButton.textContent = on ? 'Exit presentation' : 'Present';
     document.documentElement.classList.toggle('sb-presenting', on);
+    if (on) document.addEventListener('keydown', this.documentEscapeListener);
+    else document.removeEventListener('keydown', this.documentEscapeListener);
     if (on) {
       this.root.tabIndex = -1;
       this.root.focus({ preventScroll: true });
-      // Full screen where the browser allows it; the fixed overlay works without.
-      this.root.requestFullscreen?.().catch(() => undefined);
+      // Full screen where the browser allows it; the fixed overlay works without. A grant
+      // that comes after the reader left again (Esc while the request was pending) is undone.
+      const root = this.root;
+      root
+        .requestFullscreen?.()
+        .then(() => {
+          if (!this.isPresenting() && document.fullscreenElement === root)
+            void document.exitFullscreen().catch(() => undefined);
+        })
+        .catch(() => undefined);
     } else if (document.fullscreenElement) {
       void document.exitFullscreen().catch(() => undefined);
     }
@@ -542,6 +555,29 @@ export abstract class WidgetElement extends HTMLElement {
   }
 
   private readonly keyListener = (event: KeyboardEvent): void => this.onKey(event);
+
+  /**
+   * Esc in full screen belongs to the browser: it leaves full screen and need not pass
+   * the key on to the page (Chrome never does, Firefox not while the change is under
+   * way), so presentation mode ends with the full screen it entered.
+   */
+  /**
+   * Esc leaves presentation mode wherever the focus is: the widget fills the window, and
+   * a key that reached the page outside it (focus on the body after a click or a
+   * reload) is meant for it too. Keys inside the widget meet onKey first, and the menu
+   * keeps its own Esc (it stops the event).
+   */
+  private readonly documentEscapeListener = (event: KeyboardEvent): void => {
+    if (event.key !== 'Escape' || event.defaultPrevented || !this.isPresenting()) return;
+    if (event.target instanceof Node && this.contains(event.target)) return;
+    this.setPresenting(false);
+    event.preventDefault();
+  };
+
+  private readonly fullscreenListener = (): void => {
+    if (this.root && document.fullscreenElement !== this.root && this.isPresenting())
+      this.setPresenting(false);
+  };
 
   private onKey(event: KeyboardEvent): void {
     if (event.ctrlKey || event.metaKey || event.altKey) return;
