@@ -1076,7 +1076,10 @@ export function oneMediumLightContribution(
 /**
  * Single scattering in one homogeneous medium: one point t = t₀ + s of the view segment,
  * s drawn from the exponential of the mean σt truncated to the segment's length, weighted
- * T(s)·σs / pdf(s) and lit by oneMediumDirectLighting.
+ * T(s)·σs / pdf(s) and lit by oneMediumDirectLighting. With the plan's equiangular
+ * sampling, each point or spot light first gets its own equiangular point, lit by it
+ * alone (oneMediumEquiangularPoint), and the free-flight point takes the distant lights
+ * only: estimateSingleScattering's vertices for this scene, in its order.
  */
 export function estimateSingleScatteringOneMedium(
   scene: SceneData,
@@ -1085,10 +1088,26 @@ export function estimateSingleScatteringOneMedium(
   state: RngState,
 ): Rgb {
   const medium = sceneMedium(scene, 0);
-  const [enter, exit] = mediumSegment(medium, origin, direction, 0, RAY_T_LIMIT);
+  const segment = mediumSegment(medium, origin, direction, 0, RAY_T_LIMIT);
+  const [enter, exit] = segment;
   const length = exit - enter;
   const scatters = sceneHeader(scene)[3] >= 1 && anyPositive(medium.sigmaS);
-  if (!(enter < exit) || !scatters || length < TRUNCATED_EXPONENTIAL_MIN_LENGTH) return [0, 0, 0];
+  const equiangular = on(scene, 'equiangular');
+  if (!(enter < exit) || !scatters) return [0, 0, 0];
+  if (!equiangular && length < TRUNCATED_EXPONENTIAL_MIN_LENGTH) return [0, 0, 0];
+  const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
+  const local = (light: Light): boolean => light.kind === LIGHT_POINT || light.kind === LIGHT_SPOT;
+  let radiance: Rgb = [0, 0, 0];
+  if (equiangular)
+    for (let i = 0; i < count; i++) {
+      const light = sceneLight(scene, i);
+      if (local(light))
+        radiance = add(
+          radiance,
+          oneMediumEquiangularPoint(scene, medium, light, origin, direction, segment, state),
+        );
+    }
+  if (length < TRUNCATED_EXPONENTIAL_MIN_LENGTH) return radiance;
   const sigmaT = add(medium.sigmaA, medium.sigmaS);
   const rate = averageComponent(sigmaT);
   const s = sampleTruncatedExponential(rate, length, rngNextFloat(state));
@@ -1096,9 +1115,54 @@ export function estimateSingleScatteringOneMedium(
     mul(transmittanceBeer(sigmaT, s), medium.sigmaS),
     1 / truncatedExponentialPdf(rate, length, s),
   );
+  const position = at(origin, direction, enter + s);
+  if (!equiangular)
+    return mul(weight, oneMediumDirectLighting(scene, medium, position, neg(direction), state));
+  let distant: Rgb = [0, 0, 0];
+  for (let i = 0; i < count; i++) {
+    const light = sceneLight(scene, i);
+    if (!local(light))
+      distant = add(
+        distant,
+        oneMediumLightContribution(scene, medium, light, position, neg(direction), state),
+      );
+  }
+  return add(radiance, mul(weight, distant));
+}
+
+/**
+ * The equiangular point of one point or spot light on the view segment (integrator.wesl
+ * oneMediumEquiangularPoint): t from equiangularSegmentSample, weighted T(t − t₀)·σs / p(t)
+ * and lit by that light alone.
+ */
+export function oneMediumEquiangularPoint(
+  scene: SceneData,
+  medium: SceneMedium,
+  light: Light,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+  state: RngState,
+): Rgb {
+  const [t, pdf] = equiangularSegmentSample(
+    light.position,
+    origin,
+    direction,
+    segment,
+    rngNextFloat(state),
+  );
+  const sigmaT = add(medium.sigmaA, medium.sigmaS);
+  const weight = scale(mul(transmittanceBeer(sigmaT, t - segment[0]), medium.sigmaS), 1 / pdf);
   return mul(
     weight,
-    oneMediumDirectLighting(scene, medium, at(origin, direction, enter + s), neg(direction), state),
+    oneMediumLightContribution(
+      scene,
+      medium,
+      light,
+      at(origin, direction, t),
+      neg(direction),
+      state,
+    ),
   );
 }
 
@@ -1171,7 +1235,7 @@ export function estimateRadiance(
     return oneMedium || on(scene, 'oneGridMedium')
       ? estimatePathTracingOneMedium(scene, origin, direction, state)
       : estimatePathTracing(scene, origin, direction, state);
-  if (on(scene, 'volumeScattering') && oneMedium && !on(scene, 'equiangular'))
+  if (on(scene, 'volumeScattering') && oneMedium)
     return estimateSingleScatteringOneMedium(scene, origin, direction, state);
   if (on(scene, 'volumeScattering') || on(scene, 'surfaceScattering'))
     return estimateSingleScattering(scene, origin, direction, state);

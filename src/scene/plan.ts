@@ -129,8 +129,7 @@ export function plan(scene: SceneDescription): Plan {
     media[0]!.type === 'homogeneous' &&
     !surfaces &&
     !emission &&
-    !kinds.has('environment') &&
-    (pathTracing || !equiangular);
+    !kinds.has('environment');
   // One grid medium lit by delta lights, path traced: the one-medium path tracer with
   // ratio-tracked shadow rays (the same random numbers as the general path tracer).
   const oneGridMedium =

@@ -98,14 +98,39 @@ function expectSameSamples(specialized: SceneData, general: SceneData): number {
 }
 
 describe('one-medium estimators = general estimators, sample by sample (float64 twins)', () => {
-  // A point light asks single scattering for equiangular sampling, which only the
-  // general estimator has (the plan then keeps it): the sun alone here.
   it('single scattering, Henyey–Greenstein g = 0.6, under the sun', async () => {
     const { specialized, general } = await twins(
       boxScene(1, { type: 'henyey-greenstein', g: 0.6 }, false),
     );
+    expect(specialized.conditions.equiangular).toBe(false);
     // The test must see light: most samples scatter toward a lit point.
     expect(expectSameSamples(specialized, general)).toBeGreaterThan(SIZE * SIZE * SAMPLES);
+  });
+
+  it('single scattering with equiangular points: the sun and a point light inside the box', async () => {
+    const { specialized, general } = await twins(
+      boxScene(1, { type: 'henyey-greenstein', g: 0.6 }),
+    );
+    expect(specialized.conditions.equiangular).toBe(true);
+    expect(expectSameSamples(specialized, general)).toBeGreaterThan(SIZE * SIZE * SAMPLES);
+  });
+
+  it('single scattering with equiangular points: a point light alone, and a spot light with the sun', async () => {
+    const scene = boxScene(1, { type: 'isotropic' });
+    const [sun, point] = scene.lights;
+    const alone = await twins({ ...scene, lights: [point] });
+    expect(alone.specialized.conditions.oneLight).toBe(true);
+    expect(expectSameSamples(alone.specialized, alone.general)).toBeGreaterThan(SIZE * SIZE);
+    const spot = {
+      type: 'spot',
+      position: [0.6, 2.5, 0.3],
+      direction: [-0.2, -1, -0.1],
+      intensity: [4, 3, 2],
+      innerAngle: 20,
+      outerAngle: 35,
+    };
+    const withSpot = await twins({ ...scene, lights: [spot, sun] });
+    expect(expectSameSamples(withSpot.specialized, withSpot.general)).toBeGreaterThan(SIZE * SIZE);
   });
 
   it('path tracing, all orders, Henyey–Greenstein g = −0.3 (Russian roulette and spectral weights)', async () => {

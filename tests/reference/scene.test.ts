@@ -265,7 +265,8 @@ describe('the planner', () => {
       equiangular: true,
       lightPoint: true,
       homogeneousClosedForm: true,
-      oneHomogeneousMedium: false,
+      // The one-medium kernel takes equiangular points too (without segment lists).
+      oneHomogeneousMedium: true,
     });
   });
 
@@ -276,9 +277,10 @@ describe('the planner', () => {
     expect(one({})).toBe(true);
     expect(one({ scatteringOrder: 'unlimited' })).toBe(true);
     const point = { type: 'point', position: [0, 0.5, 0], intensity: [1, 1, 1] };
-    // Single scattering under a point light takes equiangular points (the general estimator);
-    // the path tracer samples free flights either way.
-    expect(one({ lights: [point] })).toBe(false);
+    // Single scattering under a point light takes equiangular points, the one-medium
+    // kernel as well as the general one; the path tracer samples free flights either way.
+    expect(one({ lights: [point] })).toBe(true);
+    expect(one({ lights: [point, sun] })).toBe(true);
     expect(one({ lights: [point], scatteringOrder: 'unlimited' })).toBe(true);
     expect(one({ lights: [sun, { type: 'environment', radiance: [1, 1, 1] }] })).toBe(false);
     expect(one({ media: [fog({ emission: [1, 1, 1] })] })).toBe(false);
@@ -452,6 +454,23 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       media: [fog()],
       lights: [{ type: 'point', position: [0, 0.5, 0], intensity: [1, 1, 1] }],
     });
+    // Single scattering under a point light: equiangular points, in the one-medium kernel.
+    const equiangular = await link({
+      ...base(),
+      media: [fog()],
+      lights: [{ type: 'point', position: [0, 0.5, 0], intensity: [1, 1, 1] }],
+    });
+    expect(defines(equiangular, 'estimateSingleScatteringOneMedium')).toBe(true);
+    expect(defines(equiangular, 'oneMediumEquiangularPoint')).toBe(true);
+    expect(defines(equiangular, 'equiangularSample')).toBe(true);
+    for (const fn of [
+      'estimateSingleScattering',
+      'sceneSegments',
+      'segmentWalk',
+      'vertexDirectLighting',
+    ])
+      expect(defines(equiangular, fn), fn).toBe(false);
+    expect(defines(single, 'oneMediumEquiangularPoint')).toBe(false);
     // The kernel advances paths a segment at a time (path regeneration).
     expect(defines(multiple, 'oneMediumPathStep')).toBe(true);
     expect(defines(multiple, 'mediumFreeFlight')).toBe(true);

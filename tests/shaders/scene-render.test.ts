@@ -57,9 +57,13 @@ describe('scene kernel on the GPU', () => {
   );
 
   it(
-    'equiangular sampling for a point light: GPU = quadrature and GPU = twin',
+    'equiangular sampling for a point light (the one-medium kernel): GPU = quadrature, GPU = twin, and = the general kernel',
     async () => {
       const scene = await sceneFrom({ ...pointLightScene, samplesPerPixel: 1024 });
+      expect(plan(scene.scene).conditions).toMatchObject({
+        equiangular: true,
+        oneHomogeneousMedium: true,
+      });
       const estimate = await gpu(scene);
       expectMatchesExact(
         estimate,
@@ -68,6 +72,11 @@ describe('scene kernel on the GPU', () => {
         2e-5 * pointLightExact(0),
       );
       expectAgreement(estimate, await cpu(scene), 'point light, GPU vs twin');
+      expectAgreement(
+        estimate,
+        await gpu(scene, { kernel: 'general', spp: 1024 }),
+        'point light, one-medium vs general kernel',
+      );
     },
     GPU_TIMEOUT,
   );
