@@ -1,10 +1,17 @@
 // <sb-translucent-room> in Chromium with WebGPU (SwiftShader), at 16² pixels and 4 samples per
 // pixel so that it stays cheap: both pictures draw and accumulate, the dipole's error and the
-// indirect share are shown, black walls take the indirect share to zero and restore from the
+// indirect share are shown, an input shows a preview first, black walls take the indirect share to zero and restore from the
 // URL, presentation mode and a preset key work; and without WebGPU the float64 twins draw both
 // pictures in the worker and say so.
 import { expect, test } from '@playwright/test';
-import { canvasStats, parseDisplayed, readout, trackErrors, widgetOpener } from './support.ts';
+import {
+  canvasStats,
+  parseDisplayed,
+  readout,
+  recordStagesFromNextInput,
+  trackErrors,
+  widgetOpener,
+} from './support.ts';
 
 const CHAPTER = '/chapters/12-beyond-the-lecture.html';
 const ID = 'translucent-room-1';
@@ -36,11 +43,19 @@ test('both pictures accumulate with times and the dipole error; black walls leav
   const before = await canvasStats(canvases.nth(1));
 
   const rendered = Number(await widget.getAttribute('data-rendered'));
-  await widget.locator('select[name="walls"]').selectOption('black');
+  const walls = widget.locator('select[name="walls"]');
+  const stagesShown = await recordStagesFromNextInput(widget, walls);
+  await walls.selectOption('black');
   await expect
     .poll(async () => Number(await widget.getAttribute('data-rendered')))
     .toBeGreaterThan(rendered);
   await expect.poll(() => indirectAll(widget)).toBe(0);
+  // The input's first picture is the preview (a smaller pass 1), then pass 1 at full size.
+  await expect.poll(() => widget.getAttribute('data-stage')).toBe('full');
+  const stages = await stagesShown();
+  expect(stages[0]).toMatch(/^Preview: pass 1 with 256 × 16, 1 sample per pixel$/);
+  expect(stages.at(-1)).toBe('full');
+  await expect(widget.locator('.sb-cost')).toContainText('1024 irradiance samples × 64 rays');
   await expect.poll(() => page.url()).toContain('walls=black');
   await expect
     .poll(async () => (await canvasStats(canvases.nth(1))).png.equals(before.png))

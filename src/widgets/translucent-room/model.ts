@@ -36,6 +36,13 @@ export const IRRADIANCE = {
   cpu: { samples: 256, rays: 16 },
 } as const;
 /**
+ * Pass 1 of the first picture after an input on WebGPU (issue 23, a preview within the
+ * first-picture budget): a quarter of the samples (about 1.1 mm apart on the default
+ * sphere) with a quarter of the rays each, so the dipole picture is a coarser quadrature
+ * of the same integral. The next frame runs the full pass and restarts the dipole picture on it.
+ */
+export const IRRADIANCE_PREVIEW = { samples: 256, rays: 16 } as const;
+/**
  * Pass 1 runs once: its paths see the sphere only as a mirror, so light that leaves the sphere,
  * bounces off a wall and comes back is left out. A second pass fed with the first's samples adds
  * it (the bench's `passes`), at the cost of a gather over all samples wherever a path of pass 1

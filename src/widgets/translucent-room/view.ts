@@ -1,8 +1,10 @@
 // The drawing of <sb-translucent-room>: the path-traced reference and the dipole picture side
-// by side. A frame runs pass 1 of the dipole method (the irradiance samples, twice) and one
-// sample per pixel of each picture; both then accumulate on their own schedule (steps of about
-// STEP_BUDGET_MS, yielding between) up to the chosen samples per pixel, and write their rows
-// and the error row themselves; the frame's rows are widget.ts's.
+// by side. After an input a preview frame runs pass 1 of the dipole method (the irradiance
+// samples) at IRRADIANCE_PREVIEW's size and one sample per pixel of each picture; the next
+// frame runs pass 1 at full size and restarts the dipole picture on it; both then accumulate
+// on their own schedule (steps of about STEP_BUDGET_MS, yielding between) up to the chosen
+// samples per pixel, and write their rows and the error row themselves; the frame's rows
+// are widget.ts's.
 import type { GpuContext } from '../../gpu/device.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
 import { PathAccumulator, type PathBatch } from '../../subsurface/translucentKernels.ts';
@@ -20,13 +22,17 @@ import {
   dipoleError,
   IRRADIANCE,
   IRRADIANCE_PASSES,
+  IRRADIANCE_PREVIEW,
   pictureKey,
   sceneFromValues,
 } from './model.ts';
 import type { RoomFrame } from './widget.ts';
 
-/** A progressive step aims at this much GPU time per picture. */
-const STEP_BUDGET_MS = 100;
+/**
+ * A progressive step aims at this much GPU time per picture: an input's first picture
+ * waits for the step in flight (GPU work is queued in order), so steps stay short.
+ */
+const STEP_BUDGET_MS = 50;
 /** The CPU fallback's image side and samples per pixel. */
 const CPU_SIZE = 24;
 const CPU_SPP = 4;
@@ -43,6 +49,8 @@ interface Pictures {
   dipole: PathAccumulator;
   target: number;
   seed: number;
+  /** Pass 1 was the preview's (IRRADIANCE_PREVIEW): the next frame runs the full one. */
+  preview: boolean;
 }
 
 export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFrame, RoomKernels> {
@@ -213,45 +221,95 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
       stage.appendChild(status);
     },
     createRenderer: (gpu: GpuContext) => new RoomKernels(gpu.device, STATIC_KERNELS),
+    refinement: (frame) => frame.stage,
     async renderGpu(renderer, _gpu, request: FrameRequest) {
       const key = pictureKey(context.values);
       const target = 2 ** Number(context.values['spp']);
+      /** Pass 1 of the dipole method at `sizes` (its samples and the time it took). */
+      const passOne = async (
+        scene: RoomScene,
+        seed: number,
+        sizes: { samples: number; rays: number },
+      ): Promise<{ samples: Float32Array; milliseconds: number; timing: string }> => {
+        let samples: Float32Array = new Float32Array(0);
+        let milliseconds = 0;
+        let timing = '';
+        for (let pass = 0; pass < IRRADIANCE_PASSES; pass++) {
+          const r = await renderer.irradiance(
+            scene,
+            sizes.samples,
+            sizes.rays,
+            seed + 2 + pass,
+            samples,
+          );
+          samples = r.samples;
+          milliseconds += r.milliseconds;
+          timing = r.timing;
+        }
+        return { samples, milliseconds, timing };
+      };
       if (pictures?.key !== key) {
+        // The first picture after an input: pass 1 at preview size, one sample per pixel
+        // of each picture (issue 23's first-picture budget); the next frame refines it.
         cancel('restarted');
         const scene = sceneFromValues(context.values);
         const seed = Number(context.values['seed']);
-        const { samples: count, rays } = IRRADIANCE.gpu;
-        let samples: Float32Array = new Float32Array(0);
-        let irradianceMs = 0;
-        let timing = '';
-        for (let pass = 0; pass < IRRADIANCE_PASSES; pass++) {
-          const r = await renderer.irradiance(scene, count, rays, seed + 2 + pass, samples);
-          samples = r.samples;
-          irradianceMs += r.milliseconds;
-          timing = r.timing;
-        }
-        if (request.signal?.aborted) return null;
+        const first = await passOne(scene, seed, IRRADIANCE_PREVIEW);
+        if (request.signal.aborted) return null;
         const pixels = scene.size * scene.size;
         const next: Pictures = {
           key,
           scene,
-          samples,
-          irradianceMs,
-          timing,
+          samples: first.samples,
+          irradianceMs: first.milliseconds,
+          timing: first.timing,
           reference: new PathAccumulator(pixels),
           dipole: new PathAccumulator(pixels),
           target,
           seed,
+          preview: true,
         };
-        // One sample per pixel of each before the frame is reported, so both are on screen.
         next.reference.add(await renderer.pathBatch(scene, { samples: 1, offset: 0, seed }));
         next.dipole.add(
-          await renderer.dipoleBatch(scene, samples, { samples: 1, offset: 0, seed: seed + 1 }),
+          await renderer.dipoleBatch(scene, first.samples, {
+            samples: 1,
+            offset: 0,
+            seed: seed + 1,
+          }),
         );
+        if (request.signal.aborted) return null;
         pictures = next;
+        show();
+        return {
+          ...frameOf(next, next.timing as GpuTiming, IRRADIANCE_PREVIEW),
+          stage: {
+            label: `Preview: pass 1 with ${IRRADIANCE_PREVIEW.samples} × ${IRRADIANCE_PREVIEW.rays}, 1 sample per pixel`,
+            pending: 'frame',
+          },
+        };
       }
       const p = pictures;
       p.target = target;
+      if (p.preview) {
+        // The full pass 1; the dipole picture starts again on it (the path-traced one does
+        // not depend on it and goes on). The preview's dipole stays on screen meanwhile.
+        const full = await passOne(p.scene, p.seed, IRRADIANCE.gpu);
+        if (request.signal.aborted || pictures !== p) return null;
+        const dipole = new PathAccumulator(p.scene.size * p.scene.size);
+        dipole.add(
+          await renderer.dipoleBatch(p.scene, full.samples, {
+            samples: 1,
+            offset: 0,
+            seed: p.seed + 1,
+          }),
+        );
+        if (request.signal.aborted || pictures !== p) return null;
+        p.samples = full.samples;
+        p.irradianceMs = full.milliseconds;
+        p.timing = full.timing;
+        p.dipole = dipole;
+        p.preview = false;
+      }
       show();
       if (!running && (p.reference.samples < target || p.dipole.samples < target))
         void accumulate();
@@ -289,6 +347,7 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
         dipole,
         target: drawn.spp,
         seed,
+        preview: false,
       };
       show();
       return frameOf(pictures, 'cpu', IRRADIANCE.cpu);

@@ -11,6 +11,7 @@
 // pictures accumulate, between frames).
 import { defineWidget, type Preset } from '../base/definition.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
+import type { Refinement } from '../base/refinement.ts';
 import type { GpuTiming } from '../base/timing.ts';
 import { timingLabel } from '../base/timing.ts';
 import { findMaterial } from '../../subsurface/materials.ts';
@@ -25,6 +26,8 @@ export interface RoomFrame {
   irradiance: { milliseconds: number; timing: GpuTiming | 'cpu' };
   /** Share of the sphere's transmitted power ΣΔA·E that came off the walls, per channel and all. */
   indirect: { channels: readonly number[]; all: number };
+  /** The preview after an input (pass 1 at preview size); absent: pass 1 at full size. */
+  stage?: Refinement;
 }
 
 function preset(name: string, extra: Record<string, number | string> = {}): Preset {
