@@ -4,11 +4,17 @@
 // sample against three independent ones); moving the spread slider to 16 gives hero
 // wavelength colour noise too. Without WebGPU the float64 twin draws in the compute worker and
 // says so. The error-against-time plot gets a point per estimator and pass, and starts
-// again on an input. Two cheap tests: 2 samples per pass and a target of 2 (4 where the
-// plot's second point is checked), so the first frame is complete (a standard error needs
-// two samples).
+// again on an input, whose first picture is a one-sample preview. Two cheap tests: 2 samples
+// per pass and a target of 2 (4 where the plot's second point is checked).
 import { expect, test } from '@playwright/test';
-import { canvasStats, readout, trackErrors, waitForRender, widgetOpener } from './support.ts';
+import {
+  canvasStats,
+  readout,
+  recordStagesFromNextInput,
+  trackErrors,
+  waitForRender,
+  widgetOpener,
+} from './support.ts';
 
 const CHAPTER = '/chapters/12-beyond-the-lecture.html';
 const open = widgetOpener(CHAPTER, 'sb-chromatic-media', 'chromatic-media-1');
@@ -36,7 +42,8 @@ test('grey medium from a deep link: zero colour noise for the shared walks; the 
   await expect(widget.locator('[data-readout="capped"]')).toHaveText('0');
 
   // The plot of error against time: labelled for screen readers, drawn by uPlot with a
-  // legend of the three estimators, one point each per pass (2 passes of 2 to the target 4).
+  // legend of the three estimators, one point each per pass from two samples per pixel on
+  // (passes of 1, the preview, then 2 and 1 to the target 4).
   const plot = widget.locator('.sb-chromatic-plot');
   await expect(plot).toHaveAttribute('role', 'img');
   await expect(plot).toHaveAttribute('aria-label', /RMS error against the reference/);
@@ -50,9 +57,16 @@ test('grey medium from a deep link: zero colour noise for the shared walks; the 
 
   const rendered = Number(await widget.getAttribute('data-rendered'));
   const spread = widget.locator('input[type="number"][name="spread"]');
+  const stagesShown = await recordStagesFromNextInput(widget, spread);
   await spread.fill('16');
   await spread.press('Enter');
   await waitForRender(widget, rendered + 1);
+  // The input's first picture is a one-sample preview of the new medium (no frame of the
+  // old one is shown after the input), then the passes of spp.
+  await expect.poll(async () => (await stagesShown()).length).toBeGreaterThanOrEqual(2);
+  const stages = await stagesShown();
+  expect(stages[0]).toMatch(/^Preview: 1 of 4 samples per pixel each/);
+  expect(stages[1]).toMatch(/^3 of 4 samples per pixel each/);
   const [, heroAfter] = await colourNoise(widget);
   expect(heroAfter).toBeGreaterThan(0);
   // An input starts the plot again: two points each at the target, not four.

@@ -292,6 +292,10 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
         return;
       }
       this.clearNotice('backend');
+      // Drawn for inputs that changed meanwhile: not reported (its readouts and stage
+      // would describe what the reader no longer asks for, and data-frames would count it
+      // as the input's picture); the render the input scheduled comes next.
+      if (request.signal.aborted) return;
       if (frame !== null)
         this.report(
           frame,
@@ -311,6 +315,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       if (request.signal.aborted) return; // a stale stage gave up: the next input draws
       throw error;
     }
+    if (request.signal.aborted) return; // stale, as above
     if (frame !== null) this.report(frame, { kind: 'cpu', reason }, version);
     else this.settleWithoutFrame(version);
   }

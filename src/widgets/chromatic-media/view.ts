@@ -158,17 +158,24 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
     size: number,
     run: Pass,
     timing: GpuTiming | 'cpu',
-  ): Promise<ChromaticFrame> {
+  ): Promise<ChromaticFrame | null> {
     const inputs = inputsFrom(context.values);
     const key = `${accumulationKey(inputs)}@${size}`;
     if (!state || state.key !== key || (request.stage === 0 && !request.background)) {
       state = fresh(inputs, size);
     }
     const s = state;
-    const spp = Math.min(inputs.spp, Math.max(inputs.target - s.estimators.hero.samples, 1));
+    // The first pass of an accumulation is a preview of one sample per pixel (a quarter of
+    // a default pass, within the first-picture budget of issue 23); later passes take spp.
+    const preview = s.pass === 0 && inputs.spp > 1;
+    const spp = preview
+      ? 1
+      : Math.min(inputs.spp, Math.max(inputs.target - s.estimators.hero.samples, 1));
     let frameMilliseconds = 0;
     for (const name of ESTIMATORS) {
       const pass = await run(inputs, ESTIMATOR_INDEX[name], size, spp, s.pass);
+      // New inputs meanwhile: the rest of this frame is stale (the next frame draws theirs).
+      if (request.signal.aborted) return null;
       accumulate(s.estimators[name], pass.sums, spp, pass.milliseconds);
       frameMilliseconds += pass.milliseconds;
     }
@@ -180,6 +187,7 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
       REFERENCE_FACTOR * spp,
       REFERENCE_FRAME_OFFSET + s.pass,
     );
+    if (request.signal.aborted) return null;
     accumulate(s.reference, reference.sums, REFERENCE_FACTOR * spp, reference.milliseconds);
     frameMilliseconds += reference.milliseconds;
     s.pass++;
@@ -233,8 +241,8 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
       refinement: {
         label: done
           ? `${samples} samples per pixel each, done (${pictureText})`
-          : `${samples} of ${inputs.target} samples per pixel each (${pictureText})`,
-        pending: done ? null : 'background',
+          : `${preview ? 'Preview: ' : ''}${samples} of ${inputs.target} samples per pixel each (${pictureText})`,
+        pending: done ? null : preview ? 'frame' : 'background',
       },
     };
   }
@@ -288,7 +296,7 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
         return pass;
       };
       const result = await frame(request, GPU_SIZE, run, 'gpu-timestamp');
-      return { ...result, timing };
+      return result && { ...result, timing };
     },
     async renderCpu(request) {
       const run: Pass = (...args) => cpuJobs.run('pass', args);
