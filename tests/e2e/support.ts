@@ -183,8 +183,8 @@ export async function framesShown(widget: Locator): Promise<number> {
 
 /**
  * Starts recording the stage (data-stage) of every frame `widget` shows from the next
- * input on `control` (a change or an input event) on, and returns the reader of that
- * list. Recording starts with the input itself, in the page: a widget still refining
+ * input on `control` on (the event the widget takes its value on), and returns the reader
+ * of that list. Recording starts with the input itself, in the page: a widget still refining
  * its old picture in the background may show such a frame between this call and the
  * test's input, and that frame is not the input's first picture.
  */
@@ -200,8 +200,10 @@ export async function recordStagesFromNextInput(
     const arm = (): void => {
       armed = true;
     };
-    input.addEventListener('input', arm);
-    input.addEventListener('change', arm);
+    // The event the widget takes the value on (widgetElement.ts): a slider's `input`, a
+    // number box's or a select's `change` (typing into a number box is not an input yet).
+    const range = input instanceof HTMLInputElement && input.type === 'range';
+    input.addEventListener(range ? 'input' : 'change', arm);
     new MutationObserver(() => {
       if (armed && element) seen.push(element.getAttribute('data-stage') ?? '');
     }).observe(element ?? input, { attributeFilter: ['data-frames'] });
