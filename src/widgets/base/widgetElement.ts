@@ -532,9 +532,8 @@ export abstract class WidgetElement extends HTMLElement {
     this.presentButton?.setAttribute('aria-pressed', String(on));
     if (this.presentButton) this.presentButton.textContent = on ? 'Exit presentation' : 'Present';
     document.documentElement.classList.toggle('sb-presenting', on);
-    if (on) document.addEventListener('keydown', this.documentEscapeListener);
-    else document.removeEventListener('keydown', this.documentEscapeListener);
     if (on) {
+      document.addEventListener('keydown', this.documentEscapeListener);
       this.root.tabIndex = -1;
       this.root.focus({ preventScroll: true });
       // Full screen where the browser allows it; the fixed overlay works without. A grant
@@ -547,8 +546,9 @@ export abstract class WidgetElement extends HTMLElement {
             void document.exitFullscreen().catch(() => undefined);
         })
         .catch(() => undefined);
-    } else if (document.fullscreenElement) {
-      void document.exitFullscreen().catch(() => undefined);
+    } else {
+      document.removeEventListener('keydown', this.documentEscapeListener);
+      if (document.fullscreenElement) void document.exitFullscreen().catch(() => undefined);
     }
     this.saveState();
     this.scheduleRender();
@@ -556,11 +556,6 @@ export abstract class WidgetElement extends HTMLElement {
 
   private readonly keyListener = (event: KeyboardEvent): void => this.onKey(event);
 
-  /**
-   * Esc in full screen belongs to the browser: it leaves full screen and need not pass
-   * the key on to the page (Chrome never does, Firefox not while the change is under
-   * way), so presentation mode ends with the full screen it entered.
-   */
   /**
    * Esc leaves presentation mode wherever the focus is: the widget fills the window, and
    * a key that reached the page outside it (focus on the body after a click or a
@@ -574,6 +569,11 @@ export abstract class WidgetElement extends HTMLElement {
     event.preventDefault();
   };
 
+  /**
+   * Esc in full screen belongs to the browser: it leaves full screen and need not pass
+   * the key on to the page (Chrome never does, Firefox not while the change is under
+   * way), so presentation mode ends with the full screen it entered.
+   */
   private readonly fullscreenListener = (): void => {
     if (this.root && document.fullscreenElement !== this.root && this.isPresenting())
       this.setPresenting(false);
