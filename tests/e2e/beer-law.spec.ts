@@ -120,10 +120,16 @@ test('presentation mode: F enters, the widget fills the screen, number keys reca
   await expect(shell).not.toHaveClass(/is-presenting/);
   // Esc in full screen is the browser's: it leaves full screen without passing the key on
   // (Chrome), and presentation mode ends with it. F was a user gesture, so full screen
-  // was granted; leaving it from the page stands in for the browser's own Esc.
+  // was granted; leaving it from the page stands in for the browser's own Esc. First the
+  // full screen the button left has to be gone (a request while it goes is not granted).
+  await expect.poll(() => page.evaluate(() => document.fullscreenElement === null)).toBe(true);
   await page.keyboard.press('f');
   await expect(shell).toHaveClass(/is-presenting/);
-  await expect.poll(() => page.evaluate(() => document.fullscreenElement !== null)).toBe(true);
+  await expect
+    .poll(() =>
+      page.evaluate(() => document.fullscreenElement?.classList.contains('sb-widget') ?? false),
+    )
+    .toBe(true);
   await page.evaluate(() => document.exitFullscreen());
   await expect(shell).not.toHaveClass(/is-presenting/);
   await expect.poll(() => page.url()).not.toContain('present=1');

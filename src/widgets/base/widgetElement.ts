@@ -542,12 +542,14 @@ export abstract class WidgetElement extends HTMLElement {
       root
         .requestFullscreen?.()
         .then(() => {
-          if (!this.isPresenting() && document.fullscreenElement === root)
+          if (this.isPresenting()) this.inFullscreen = true;
+          else if (document.fullscreenElement === root)
             void document.exitFullscreen().catch(() => undefined);
         })
         .catch(() => undefined);
     } else {
       document.removeEventListener('keydown', this.documentEscapeListener);
+      this.inFullscreen = false;
       if (document.fullscreenElement) void document.exitFullscreen().catch(() => undefined);
     }
     this.saveState();
@@ -575,9 +577,13 @@ export abstract class WidgetElement extends HTMLElement {
    * way), so presentation mode ends with the full screen it entered.
    */
   private readonly fullscreenListener = (): void => {
-    if (this.root && document.fullscreenElement !== this.root && this.isPresenting())
+    // Only the end of the full screen this presentation was granted: the change event of
+    // an earlier one (left by the button, F again at once) can arrive after the new start.
+    if (this.inFullscreen && document.fullscreenElement !== this.root && this.isPresenting())
       this.setPresenting(false);
   };
+  /** The full screen this presentation asked for was granted (and not left since). */
+  private inFullscreen = false;
 
   private onKey(event: KeyboardEvent): void {
     if (event.ctrlKey || event.metaKey || event.altKey) return;
