@@ -275,9 +275,18 @@ export function mediumSegment(
 export function mediumDensity(scene: SceneData, medium: SceneMedium, p: Vec3): number {
   if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
     scene.stats.lookups += 1;
-    return gridDensityTrilinear(sceneGrid(scene, 'grid'), scene.density, p);
+    return sceneGridDensity(scene, sceneGrid(scene, 'grid'), p);
   }
   return 1;
+}
+
+/**
+ * The scene grid's trilinear density (medium.ts gridDensityTrilinear). The WGSL reads the
+ * samples from a storage buffer clamped when uploaded (gridStoredSamples), the twin from
+ * scene.density through the same clamp: the same values.
+ */
+export function sceneGridDensity(scene: SceneData, grid: DensityGrid, p: Vec3): number {
+  return gridDensityTrilinear(grid, scene.density, p);
 }
 
 export function mediumMajorant(

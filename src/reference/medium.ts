@@ -229,6 +229,21 @@ export function gridSample(grid: DensityGrid, volume: Float32Array, cell: Vec3):
   return clampDensity(volume[i + nx * (j + ny * k)] ?? 0);
 }
 
+/**
+ * The samples of a grid as gridSample reads them, x fastest: nx·ny·nz values (at least
+ * one), each clamped to [0, 1e18], a missing one 0. The scene kernel reads its grid from
+ * a storage buffer of these (integrator.wesl sceneDensity), so it clamps nothing per load.
+ */
+export function gridStoredSamples(
+  grid: DensityGrid,
+  volume: Float32Array,
+): Float32Array<ArrayBuffer> {
+  const [nx, ny, nz] = grid.dimensions;
+  const samples = new Float32Array(Math.max(1, nx * ny * nz));
+  for (let i = 0; i < samples.length; i++) samples[i] = clampDensity(volume[i] ?? 0);
+  return samples;
+}
+
 export function lerpWithinEndpoints(a: number, b: number, t: number): number {
   return clampBetween((1 - t) * a + t * b, Math.min(a, b), Math.max(a, b));
 }
@@ -237,38 +252,89 @@ function insideClosedBox(grid: DensityGrid, p: Vec3): boolean {
   return AXES.every((a) => p[a] >= grid.boundsMin[a] && p[a] <= grid.boundsMax[a]);
 }
 
-export function gridDensityTrilinear(grid: DensityGrid, volume: Float32Array, p: Vec3): number {
-  if (!gridHasVolume(grid) || !insideClosedBox(grid, p)) return 0;
-  // Per axis: the two samples around p and their weights. Sample i's centre is at
-  // u = i in u = (p − min)/(max − min)·n − ½; clamping u to [0, n − 1] is clamp-to-edge.
+/** Where a trilinear lookup falls among the samples (WGSL GridTrilinearCorners). */
+export interface GridTrilinearCorners {
+  lower: Vec3;
+  upper: Vec3;
+  weights: Vec3;
+}
+
+/**
+ * The lower sample index ⌊u⌋ (at most `last`), the upper one min(lower + 1, last) and the
+ * weights u − ⌊u⌋ of the upper ones, u the continuous sample coordinate clamped to
+ * [0, n − 1] (sample i sits at u = i; clamp-to-edge). p inside the grid's box.
+ */
+export function gridTrilinearCorners(grid: DensityGrid, last: Vec3, p: Vec3): GridTrilinearCorners {
   const lower: number[] = [];
-  const fraction: number[] = [];
+  const upper: number[] = [];
+  const weights: number[] = [];
   for (const a of AXES) {
     const n = grid.dimensions[a];
     const u = ((p[a] - grid.boundsMin[a]) / (grid.boundsMax[a] - grid.boundsMin[a])) * n - 0.5;
     const clamped = clampBetween(u, 0, n - 1);
-    const i = Math.min(Math.floor(clamped), Math.max(n - 2, 0));
+    const base = Math.floor(clamped);
+    const i = Math.min(base, last[a]);
     lower.push(i);
-    fraction.push(clamped - i);
+    upper.push(Math.min(i + 1, last[a]));
+    weights.push(clamped - base);
   }
-  let sum = 0;
-  let largest = 0;
-  for (let corner = 0; corner < 8; corner++) {
-    let weight = 1;
-    const cell = AXES.map((a) => {
-      const upper = (corner >> a) & 1;
-      const f = fraction[a] ?? 0;
-      weight *= upper ? f : 1 - f;
-      return (lower[a] ?? 0) + upper;
-    }) as unknown as Vec3;
-    const value = gridSample(grid, volume, cell);
-    sum += weight * value;
-    // Only corners that carry weight bound the result (an n = 1 axis has one sample).
-    if (weight > 0) largest = Math.max(largest, value);
-  }
-  // A convex combination cannot exceed its largest term; the clamp removes the
-  // float64 rounding of the sum so that majorants bound the result exactly.
-  return saturatingProduct(grid.densityScale, Math.min(sum, largest));
+  return {
+    lower: lower as unknown as Vec3,
+    upper: upper as unknown as Vec3,
+    weights: weights as unknown as Vec3,
+  };
+}
+
+/**
+ * The trilinear blend of eight samples, lower = (ρ000, ρ100, ρ010, ρ110) and upper =
+ * (ρ001, ρ101, ρ011, ρ111) with the index bits x, y, z, at weights f ∈ [0, 1]³: seven
+ * lerps a(1 − t) + bt, bounded by the largest sample (a convex combination cannot exceed
+ * it; the bound removes only rounding, so majorants bound the result exactly).
+ */
+export function trilinearBlend(
+  lower: readonly [number, number, number, number],
+  upper: readonly [number, number, number, number],
+  f: Vec3,
+): number {
+  const lerp = (a: number, b: number, t: number): number => a * (1 - t) + b * t;
+  const [l0, l1, l2, l3] = lower;
+  const [u0, u1, u2, u3] = upper;
+  const y0 = lerp(lerp(l0, l1, f[0]), lerp(l2, l3, f[0]), f[1]);
+  const y1 = lerp(lerp(u0, u1, f[0]), lerp(u2, u3, f[0]), f[1]);
+  return Math.min(lerp(y0, y1, f[2]), Math.max(...lower, ...upper));
+}
+
+/**
+ * The stored density of a sample whose index is inside the grid, clamped to [0, 1e18]
+ * (gridSample without its index clamp). The WGSL reads a texture, which knows its size;
+ * here the grid gives the row lengths.
+ */
+export function gridTexel(grid: DensityGrid, volume: Float32Array, cell: Vec3): number {
+  const [nx, ny] = grid.dimensions;
+  return clampDensity(volume[cell[0] + nx * (cell[1] + ny * cell[2])] ?? 0);
+}
+
+export function gridDensityTrilinear(grid: DensityGrid, volume: Float32Array, p: Vec3): number {
+  if (!gridHasVolume(grid) || !insideClosedBox(grid, p)) return 0;
+  const last = grid.dimensions.map((n) => Math.max(n, 1) - 1) as unknown as Vec3;
+  const { lower: a, upper: b, weights } = gridTrilinearCorners(grid, last, p);
+  const texel = (x: number, y: number, z: number): number => gridTexel(grid, volume, [x, y, z]);
+  const value = trilinearBlend(
+    [
+      texel(a[0], a[1], a[2]),
+      texel(b[0], a[1], a[2]),
+      texel(a[0], b[1], a[2]),
+      texel(b[0], b[1], a[2]),
+    ],
+    [
+      texel(a[0], a[1], b[2]),
+      texel(b[0], a[1], b[2]),
+      texel(a[0], b[1], b[2]),
+      texel(b[0], b[1], b[2]),
+    ],
+    weights,
+  );
+  return saturatingProduct(grid.densityScale, value);
 }
 
 export function gridCellIndex(grid: DensityGrid, p: Vec3): Vec3 {
@@ -302,7 +368,7 @@ export function gridMajorantLookup(
  * the block face with weight up to ½, so the largest sample of the block alone can lie
  * below σt there, and delta tracking with σt > σ̄ is biased (physics.md §4.5). The
  * trilinear value is a convex combination of the samples it touches, so their maximum
- * bounds it, and the GPU's clamped lerps keep that true in f32. Because block faces
+ * bounds it, and the GPU's bound on its blend (trilinearBlend) keeps that true in f32. Because block faces
  * lie on fine cell faces, a fine sample coordinate there is a half-integer; f32
  * rounding of a position near a block face can change its coarse cell but not which
  * samples its lookup touches, and those belong to the support of both blocks.

@@ -11,7 +11,7 @@ import { sceneRenderKernel } from '../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { GpuTimer } from '../gpu/timing.ts';
 import { PHASE_TABLE_WORDS } from '../phase/registry.ts';
-import type { DensityGridData } from '../reference/medium.ts';
+import { gridStoredSamples, type DensityGridData } from '../reference/medium.ts';
 import { PASS_WORDS_PER_PIXEL, type Accumulation } from './accumulation.ts';
 import { GpuAccumulation } from './gpuAccumulation.ts';
 import type { PackedScene } from './pack.ts';
@@ -37,12 +37,14 @@ function bindGroupLayout(device: GPUDevice): GPUBindGroupLayout {
   return gpuCore(device).bindGroupLayout([
     { binding: 0, visibility, buffer: { type: 'read-only-storage' } },
     { binding: 1, visibility, buffer: { type: 'storage' } },
-    { binding: 2, visibility, texture },
+    // The grid's samples (integrator.wesl sceneDensity, a storage buffer) and its majorant
+    // grid (a texture). Four storage buffers in all, within WebGPU's default
+    // maxStorageBuffersPerShaderStage (8).
+    { binding: 2, visibility, buffer: { type: 'read-only-storage' } },
     { binding: 3, visibility, texture },
     { binding: 4, visibility, buffer: { type: 'uniform' } },
     // The phase tables (integrator.wesl scenePhaseTables): in every layout, read only by
-    // kernels linked with a tabulated phase function's condition. Three storage buffers in
-    // all, within WebGPU's default maxStorageBuffersPerShaderStage (8).
+    // kernels linked with a tabulated phase function's condition.
     { binding: 5, visibility, buffer: { type: 'read-only-storage' } },
   ]);
 }
@@ -55,6 +57,17 @@ function pipelineFor(device: GPUDevice, code: string): Promise<GPUComputePipelin
     entryPoint: ENTRY_POINT,
     layout: core.pipelineLayout([bindGroupLayout(device)]),
   });
+}
+
+/** The grid's samples, clamped as gridSample clamps them, in a storage buffer. */
+function sampleBuffer(device: GPUDevice, data: DensityGridData): GPUBuffer {
+  const samples = gridStoredSamples(data.grid, data.volume);
+  const buffer = device.createBuffer({
+    size: samples.byteLength,
+    usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+  });
+  device.queue.writeBuffer(buffer, 0, samples);
+  return buffer;
 }
 
 function volumeTexture(device: GPUDevice, data: DensityGridData): GPUTexture {
@@ -142,7 +155,7 @@ export class GpuSceneRenderer implements PassRenderer {
         size: RENDER_PASS.size,
         usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
       });
-      const density = volumeTexture(device, packed.density);
+      const density = sampleBuffer(device, packed.density);
       const majorant = volumeTexture(device, packed.majorant);
       // At least one table's bytes (zeros without tables): the binding's minimum size for
       // a kernel that declares the runtime-sized array<PhaseTable>.
@@ -158,7 +171,7 @@ export class GpuSceneRenderer implements PassRenderer {
         entries: [
           { binding: 0, resource: { buffer: records } },
           { binding: 1, resource: { buffer: output } },
-          { binding: 2, resource: density.createView() },
+          { binding: 2, resource: { buffer: density } },
           { binding: 3, resource: majorant.createView() },
           { binding: 4, resource: { buffer: uniforms } },
           { binding: 5, resource: { buffer: phaseTables } },

@@ -391,7 +391,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'rayleighEval',
       'lightSampleDirectional',
       'sampleFreeFlight',
-      'gridDensityTrilinear',
+      'sceneGridDensity',
       'gridMajorantAlongRay',
       'surfaceHitDistance',
       'estimateSingleScattering',
@@ -415,7 +415,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
     expect(defines(code, 'transmittanceBeer')).toBe(true);
     for (const fn of [
       'sampleFreeFlight',
-      'gridDensityTrilinear',
+      'sceneGridDensity',
       'emissionClosedForm',
       'estimatePathTracing',
       'lightSamplePoint',
@@ -479,7 +479,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'sceneSegments',
       'vertexDirectLighting',
       'segmentWalk',
-      'gridDensityTrilinear',
+      'sceneGridDensity',
     ])
       expect(defines(multiple, fn), fn).toBe(false);
   });
@@ -491,7 +491,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       media: [{ ...fog(), type: 'grid', grid: { dimensions: [1, 1, 1], density: [1] } }],
       lights: [{ type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] }],
     });
-    for (const fn of ['oneMediumPathStep', 'segmentTransmittance', 'gridDensityTrilinear'])
+    for (const fn of ['oneMediumPathStep', 'segmentTransmittance', 'sceneGridDensity'])
       expect(defines(code, fn), fn).toBe(true);
     for (const fn of ['pathTracingStep', 'sceneSegments', 'segmentWalk', 'vertexDirectLighting'])
       expect(defines(code, fn), fn).toBe(false);
@@ -501,7 +501,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
     const code = await link(exampleSceneJson('smoke-spotlight'));
     for (const fn of [
       'sampleFreeFlight',
-      'gridDensityTrilinear',
+      'sceneGridDensity',
       'gridMajorantAlongRay',
       'spotFalloff',
       'surfaceHitDistance',
@@ -524,7 +524,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
     });
     for (const fn of ['equiangularSample', 'equiangularSegmentSample', 'lightSamplePoint'])
       expect(defines(code, fn), fn).toBe(true);
-    for (const fn of ['sampleFreeFlight', 'spotFalloff', 'gridDensityTrilinear'])
+    for (const fn of ['sampleFreeFlight', 'spotFalloff', 'sceneGridDensity'])
       expect(defines(code, fn), fn).toBe(false);
   });
 
@@ -543,7 +543,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
     for (const fn of [
       'pathTracingStep',
       'mediumFreeFlight',
-      'gridDensityTrilinear',
+      'sceneGridDensity',
       'hgEvalDirections',
       'rayleighEval',
       'lightSampleSpot',
