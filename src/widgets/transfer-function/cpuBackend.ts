@@ -5,7 +5,7 @@
 import { cacheKey, workerJobs, type WorkerJobs } from '../../workers/compute.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import type { Rgb } from '../base/imagePanel.ts';
-import type { VolumeRendererGpu } from './gpuBackend.ts';
+import type { GpuRows, VolumeRendererGpu } from './gpuBackend.ts';
 import { rowsScene, type jobs as rowJobs, type RowsBand } from './jobs.ts';
 import { CPU_SIZE, emptyImage, IMAGE_SIZE, type FrameInputs, type VolumeImage } from './model.ts';
 
@@ -144,10 +144,37 @@ function addBand(
   image.cappedRays += band.cappedRays;
 }
 
-/** The GPU kernel at IMAGE_SIZE² pixels (or a preview's fewer); each call is one dispatch, timed on the GPU. */
+/**
+ * GPU time one dispatch of GpuRenderer may take (ms). The GPU runs a dispatch to its end,
+ * so an input waits for the dispatches in flight before its preview can start: a whole
+ * 160² frame in one dispatch (126–166 ms on SwiftShader) made the first picture after an
+ * input take 190–240 ms (issue 23). Bands of about this much work, at most
+ * GPU_BANDS_IN_FLIGHT of them submitted at once, bound that wait.
+ */
+export const GPU_BAND_BUDGET_MS = 15;
+/**
+ * Bands submitted before the first of them is read back: the next band runs while the
+ * last one's read-back comes back (about 10 ms per band in Chrome on SwiftShader, which
+ * one band at a time added to every band's time).
+ */
+export const GPU_BANDS_IN_FLIGHT = 2;
+/** Rows of the first bands, before any band of this renderer has been timed. */
+const GPU_FIRST_BAND_ROWS = 8;
+
+const abortError = (): DOMException =>
+  new DOMException('the rows are no longer needed', 'AbortError');
+
+/**
+ * The GPU kernel at IMAGE_SIZE² pixels (or a preview's fewer), timed on the GPU. Rows go
+ * in bands of about GPU_BAND_BUDGET_MS each (sized from the cost per ray and voxel of
+ * path measured on the bands before), one dispatch and read-back per band, at most
+ * GPU_BANDS_IN_FLIGHT at a time; `signal` is checked before each band is submitted.
+ */
 export class GpuRenderer implements FrameRenderer {
   readonly kind = 'gpu';
   readonly size = IMAGE_SIZE;
+  /** Measured GPU ms per ray and voxel of path (rays × 1/Δs), or null before the first band. */
+  private msPerRayVoxel: number | null = null;
 
   constructor(private readonly gpu: VolumeRendererGpu) {}
 
@@ -155,6 +182,18 @@ export class GpuRenderer implements FrameRenderer {
     return emptyImage(size, new Float32Array(3 * size * size));
   }
 
+  /** Rows of the next band at `size` pixels per row and step Δs (voxels), within the budget. */
+  bandRows(size: number, stepVoxels: number): number {
+    if (this.msPerRayVoxel === null) return GPU_FIRST_BAND_ROWS;
+    const rowMs = (this.msPerRayVoxel * size) / Math.max(stepVoxels, 1e-3);
+    return Math.max(1, Math.min(size, Math.floor(GPU_BAND_BUDGET_MS / Math.max(rowMs, 1e-6))));
+  }
+
+  /**
+   * Rows [rowStart, rowEnd) band by band; an aborted `signal` rejects with an AbortError
+   * before the next band is submitted, leaving `image` as it was (bands are copied in
+   * once all are back; the ones in flight finish unread).
+   */
   async renderInto(
     image: VolumeImage,
     inputs: FrameInputs,
@@ -162,18 +201,45 @@ export class GpuRenderer implements FrameRenderer {
     threshold: number,
     rowStart: number,
     rowEnd: number,
+    signal?: AbortSignal,
   ): Promise<RowsCost> {
     const { size } = image;
-    const band = await this.gpu.renderRows({
-      inputs,
-      size,
-      stepVoxels,
-      threshold,
-      rowStart,
-      rowEnd,
-    });
-    addBand(image, band, rowStart);
-    return { milliseconds: band.milliseconds, how: timingLabel(band.timing), timing: band.timing };
+    const end = Math.min(rowEnd, size);
+    const inFlight: Promise<GpuRows>[] = [];
+    const bands: GpuRows[] = [];
+    let milliseconds = 0;
+    let timing: GpuTiming = 'gpu-timestamp';
+    let start = rowStart;
+    while (start < end || inFlight.length > 0) {
+      while (start < end && inFlight.length < GPU_BANDS_IN_FLIGHT) {
+        if (signal?.aborted) {
+          // Nobody reads these any more; their errors (a lost device) are not the caller's.
+          for (const band of inFlight) band.catch(() => undefined);
+          throw abortError();
+        }
+        const stop = Math.min(end, start + this.bandRows(size, stepVoxels));
+        inFlight.push(
+          this.gpu.renderRows({
+            inputs,
+            size,
+            stepVoxels,
+            threshold,
+            rowStart: start,
+            rowEnd: stop,
+          }),
+        );
+        start = stop;
+      }
+      const band = await inFlight.shift()!;
+      const rays = band.rows * size;
+      if (rays > 0) this.msPerRayVoxel = (band.milliseconds * Math.max(stepVoxels, 1e-3)) / rays;
+      bands.push(band);
+      milliseconds += band.milliseconds;
+      if (band.timing === 'gpu-wall') timing = 'gpu-wall';
+    }
+    if (signal?.aborted) throw abortError();
+    for (const band of bands) addBand(image, band, band.rowStart);
+    return { milliseconds, how: timingLabel(timing), timing };
   }
 }
 
