@@ -29,6 +29,13 @@ export interface PathBatch {
   timing: string;
 }
 
+/** GPU time one band of a gather may take (ms); see gather. */
+export const GATHER_BAND_BUDGET_MS = 20;
+/** Bands of a gather submitted before the first is read back (hides the read-back's latency). */
+export const GATHER_BANDS_IN_FLIGHT = 2;
+/** Rows of a gather's first bands, before its cost per row is known. */
+const GATHER_FIRST_BAND_ROWS = 4;
+
 const workgroups = (size: number): [number, number] => [Math.ceil(size / 8), Math.ceil(size / 8)];
 const floats = (words: Uint32Array): Float32Array =>
   new Float32Array(words.buffer, words.byteOffset, words.length);
@@ -63,44 +70,81 @@ export class TranslucentKernels {
    * Pass 2 of Jensen & Buhler on the GPU with threshold ε (octree built on the CPU).
    * `packed` is packOctree(octree) where the caller has it already (the widget packs in
    * its worker); otherwise it is packed here, once per octree.
+   *
+   * The image goes in bands of rows, each about GATHER_BAND_BUDGET_MS of GPU time (sized
+   * from the rows before, in this call: the cost per row depends on ε and the octree), at
+   * most GATHER_BANDS_IN_FLIGHT submitted at once. The GPU runs a dispatch to its end, so
+   * a whole 64² gather in one (≈ 380 ms on SwiftShader; the exact sum more) held the
+   * picture of the next input behind it (issue 23). `signal`, checked before each band,
+   * rejects with an AbortError.
    */
   async gather(
     scene: TranslucentScene,
     octree: Octree,
     epsilon: number,
     packed?: { nodes: Uint32Array; samples: Uint32Array },
+    signal?: AbortSignal,
   ): Promise<GatherImage> {
     const code = await linkLibraryKernel(this.library, 'kernels/translucent-gather.wesl');
     if (this.packedFor !== octree || !this.packed) {
       this.packed = packed ?? packOctree(octree);
       this.packedFor = octree;
     }
-    const pixels = scene.size * scene.size;
-    const result = await runCompute(this.device, {
-      code,
-      entryPoint: 'gatherMain',
-      inputs: [this.packed.nodes, this.packed.samples],
-      outputWords: 5 * pixels,
-      workgroups: workgroups(scene.size),
-      uniforms: packParams(scene, { count: octree.nodes.length, epsilon }),
-    });
-    const out = floats(result.output);
+    const { nodes, samples } = this.packed;
+    const size = scene.size;
+    const pixels = size * size;
     const image = new Float32Array(3 * pixels);
     const visited = new Float32Array(pixels);
     const terms = new Float32Array(pixels);
-    for (let p = 0; p < pixels; p++) {
-      image[3 * p] = out[5 * p]!;
-      image[3 * p + 1] = out[5 * p + 1]!;
-      image[3 * p + 2] = out[5 * p + 2]!;
-      visited[p] = out[5 * p + 3]!;
-      terms[p] = out[5 * p + 4]!;
+    const band = (first: number, rows: number) =>
+      runCompute(this.device, {
+        code,
+        entryPoint: 'gatherMain',
+        inputs: [nodes, samples],
+        outputWords: 5 * rows * size,
+        workgroups: [Math.ceil(size / 8), Math.ceil(rows / 8)],
+        uniforms: packParams(scene, { count: octree.nodes.length, epsilon, offset: first }),
+      }).then((result) => ({ first, rows, result }));
+    const inFlight: ReturnType<typeof band>[] = [];
+    let msPerRow: number | null = null;
+    let milliseconds = 0;
+    let wall = false;
+    let next = 0;
+    while (next < size || inFlight.length > 0) {
+      while (next < size && inFlight.length < GATHER_BANDS_IN_FLIGHT) {
+        if (signal?.aborted) {
+          for (const pending of inFlight) pending.catch(() => undefined);
+          throw new DOMException('the gather is no longer needed', 'AbortError');
+        }
+        const rows =
+          msPerRow === null
+            ? GATHER_FIRST_BAND_ROWS
+            : Math.max(1, Math.floor(GATHER_BAND_BUDGET_MS / Math.max(msPerRow, 1e-6)));
+        const take = Math.min(rows, size - next);
+        inFlight.push(band(next, take));
+        next += take;
+      }
+      const { first, rows, result } = await inFlight.shift()!;
+      const ms = result.gpuMs ?? result.wallMs;
+      if (result.gpuMs === null) wall = true;
+      milliseconds += ms;
+      msPerRow = ms / rows;
+      const out = floats(result.output);
+      for (let q = 0; q < rows * size; q++) {
+        const p = first * size + q;
+        image[3 * p] = out[5 * q]!;
+        image[3 * p + 1] = out[5 * q + 1]!;
+        image[3 * p + 2] = out[5 * q + 2]!;
+        visited[p] = out[5 * q + 3]!;
+        terms[p] = out[5 * q + 4]!;
+      }
     }
     return {
       image,
       visited,
       terms,
-      milliseconds: result.gpuMs ?? result.wallMs,
-      timing: result.gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+      milliseconds,
+      timing: wall ? 'gpu-wall' : 'gpu-timestamp',
     };
   }
 

@@ -111,6 +111,30 @@ describe('translucent kernels on the GPU (Dawn)', () => {
     expect(Math.max(...coarse.visited)).toBeLessThan(Math.max(...exact.visited));
   });
 
+  it('gather in bands: every row of the image written once, and an input stops it with an AbortError', async () => {
+    const kernels = new TranslucentKernels(await nodeDevice(), SHADER_LIBRARY);
+    const s = scene();
+    const octree = buildOctree(irradianceSamples(s, 600), s.radius);
+    // Bands are at least 4 rows apart from the first; the scene's image has more rows.
+    expect(s.size).toBeGreaterThan(8);
+    const gpu = await kernels.gather(s, octree, 0.1);
+    const twin = renderGatherCpu(s, octree, 0.1);
+    // Every pixel written by its own row's band: the visited counts match the twin's rows.
+    let wrongRows = 0;
+    for (let row = 0; row < s.size; row++) {
+      let differing = 0;
+      for (let i = 0; i < s.size; i++)
+        differing += gpu.visited[row * s.size + i] === twin.visited[row * s.size + i] ? 0 : 1;
+      if (differing > 1) wrongRows += 1;
+    }
+    expect(wrongRows).toBe(0);
+    const controller = new AbortController();
+    controller.abort();
+    await expect(
+      kernels.gather(s, octree, 0.1, undefined, controller.signal),
+    ).rejects.toMatchObject({ name: 'AbortError' });
+  });
+
   it('the Lambertian kernel matches its twin', async () => {
     const kernels = new TranslucentKernels(await nodeDevice(), SHADER_LIBRARY);
     const s = scene();

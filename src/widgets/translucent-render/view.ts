@@ -42,8 +42,12 @@ import {
 } from './model.ts';
 import type { TranslucentFrame } from './widget.ts';
 
-/** A progressive step of the path tracer aims at this much GPU time. */
-const STEP_BUDGET_MS = 120;
+/**
+ * A progressive step of the path tracer aims at this much GPU time (at least one sample
+ * per pixel): an input waits for the step in flight, and steps of 120 ms held the first
+ * picture after an input back by up to that much (issue 23).
+ */
+const STEP_BUDGET_MS = 40;
 /** Largest image side the CPU fallback draws. */
 const CPU_SIZE = 40;
 
@@ -137,6 +141,8 @@ export function createView(
   let reference: ReferenceState | null = null;
   let referenceToken = 0;
   let running = false;
+  /** The reader cancelled the path tracer: later frames do not resume it (Run does). */
+  let referenceStopped = false;
   /** Whether the last render ran on the CPU twins, where no reference is ever traced. */
   let cpuOnly = false;
   let pictures: Pictures | null = null;
@@ -181,6 +187,7 @@ export function createView(
   };
 
   const cancelReference = (message: string): void => {
+    referenceStopped = message === 'cancelled';
     referenceToken += 1;
     if (running && status) status.textContent = `Path tracing ${message}.`;
     running = false;
@@ -280,8 +287,13 @@ export function createView(
     const backend = await context.backend();
     if (backend.kind !== 'gpu') return;
     const token = ++referenceToken;
-    const current = (): boolean =>
+    // An input pauses the path tracer until the input's full-quality frame (finishFrame
+    // resumes it): its steps would run between the preview's dispatches on the GPU and
+    // hold the new picture back (issue 23).
+    const input = context.inputSignal;
+    const alive = (): boolean =>
       token === referenceToken && job === reference && !context.signal.aborted;
+    const current = (): boolean => alive() && !input.aborted;
     running = true;
     setRunning(true);
     let perStep = 1;
@@ -295,7 +307,8 @@ export function createView(
           offset: job.accumulator.samples,
           seed: Number(context.values['seed']),
         });
-        if (!current()) return;
+        // A step that an input overtook is still this reference's: kept.
+        if (!alive()) return;
         job.accumulator.add(batch);
         job.timing = batch.timing;
         // Aim the next step at the budget from this one's time per sample.
@@ -470,9 +483,11 @@ export function createView(
           timing: '',
         };
         void continueReference();
-      } else if (reference.target !== target) {
+      } else {
+        // The same reference: a new target, or a step paused by an input, goes on.
         reference.target = target;
-        if (!running && reference.accumulator.samples < target) void continueReference();
+        if (!running && !referenceStopped && reference.accumulator.samples < target)
+          void continueReference();
       }
     } else {
       set('path-spp', 'needs WebGPU');
@@ -650,7 +665,10 @@ export function createView(
       runButton.type = 'button';
       runButton.className = 'sb-button';
       runButton.textContent = 'Continue path tracing';
-      runButton.addEventListener('click', () => void continueReference());
+      runButton.addEventListener('click', () => {
+        referenceStopped = false;
+        void continueReference();
+      });
       cancelButton = document.createElement('button');
       cancelButton.type = 'button';
       cancelButton.className = 'sb-button';
@@ -688,7 +706,13 @@ export function createView(
       const epsilon = epsilonOf(context.values);
       const start = performance.now();
       const diffuse = await renderer.diffuse(shown);
-      const gather = await renderer.gather(shown, state.octree, epsilon, state.packed);
+      const gather = await renderer.gather(
+        shown,
+        state.octree,
+        epsilon,
+        state.packed,
+        request.signal,
+      );
       ladder.record(choice.index, performance.now() - start);
       if (!choice.final)
         return finishPreview(
@@ -707,7 +731,7 @@ export function createView(
       if (exact?.key !== exactKey)
         exact = {
           key: exactKey,
-          ...(await renderer.gather(shown, state.octree, 0, state.packed)),
+          ...(await renderer.gather(shown, state.octree, 0, state.packed, request.signal)),
         };
       return finishFrame(
         shown,
