@@ -152,7 +152,7 @@ const NeuralParams = /* @__PURE__ */ struct('NeuralParams', 64, 16, {
   parameterCount: [52, u32],
 });
 const vec3u = { kind: 'vector', scalar: 'u32', length: 3, size: 12, align: 16 } as const;
-const PhotonParams = /* @__PURE__ */ struct('PhotonParams', 208, 16, {
+const PhotonParams = /* @__PURE__ */ struct('PhotonParams', 224, 16, {
   boxMin: [0, vec3f],
   sigmaT: [12, f32],
   boxMax: [16, vec3f],
@@ -183,6 +183,8 @@ const PhotonParams = /* @__PURE__ */ struct('PhotonParams', 208, 16, {
   samples: [196, u32],
   queryCount: [200, u32],
   cellCount: [204, u32],
+  rowStart: [208, u32],
+  rowEnd: [212, u32],
 });
 const SkyParams = /* @__PURE__ */ struct('SkyParams', 64, 16, {
   sinSun: [0, f32],

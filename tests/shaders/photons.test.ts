@@ -444,3 +444,56 @@ describe('consistency without caustics (η = 1): photon map = path tracer within
     });
   });
 });
+
+describe('the GPU gather in bands of rows (issue 23)', () => {
+  it('every row of a many-band image is the twin’s row: the same photons, the same random numbers', async () => {
+    const inputs = { ...DEFAULT_INPUTS, photons: 20000, seed: 5 };
+    const set = tracePhotonsCpu(inputs);
+    const sorted = buildGridCpu(set, gridFor(inputs.radius));
+    const records = new Float32Array(set.count * RECORD_WORDS);
+    const words = new Uint32Array(records.buffer);
+    for (let i = 0; i < set.count; i++) {
+      records.set(
+        [
+          ...set.positions.subarray(3 * i, 3 * i + 3),
+          set.powers[i]!,
+          ...set.directions.subarray(3 * i, 3 * i + 3),
+        ],
+        i * RECORD_WORDS,
+      );
+      words[i * RECORD_WORDS + 7] = set.glass[i]!;
+    }
+    const width = 16;
+    const height = 28; // bands of 8, 8, 8 and 4 rows
+    const device = await nodeDevice();
+    const code = await linkLibraryKernel(SHADER_LIBRARY, 'kernels/photon-map.wesl');
+    const gpu = await renderPhotonMapGpu(device, code, inputs, width, height, 1, {
+      photonsIn: records,
+      bandRows: 8,
+    });
+    const twin = photonMapImageCpu(inputs, set, sorted, width, height, 1, inputs.seed);
+    let lit = 0;
+    for (let row = 0; row < height; row++) {
+      let difference = 0;
+      let scale = 0;
+      for (let x = 0; x < width; x++) {
+        const p = row * width + x;
+        difference += Math.abs(gpu.image[p]! - twin[p]!);
+        scale += Math.abs(twin[p]!);
+      }
+      // f32 against float64 marching: a rare step may round the other way.
+      expect(difference, `row ${row}`).toBeLessThanOrEqual(0.02 * scale + 1e-6);
+      if (scale > 0) lit += 1;
+    }
+    expect(lit).toBeGreaterThan(height / 2);
+    const abort = new AbortController();
+    abort.abort();
+    await expect(
+      renderPhotonMapGpu(device, code, inputs, width, height, 1, {
+        photonsIn: records,
+        signal: abort.signal,
+        bandRows: 8,
+      }),
+    ).rejects.toMatchObject({ name: 'AbortError' });
+  });
+});

@@ -31,6 +31,9 @@ export interface ParamsExtra {
   seed: number;
   samples: number;
   queryCount: number;
+  /** gatherImage's band of rows [rowStart, rowEnd) (default: every row). */
+  rowStart?: number;
+  rowEnd?: number;
 }
 
 export function packParams(inputs: PhotonInputs, extra: ParamsExtra): Uint32Array<ArrayBuffer> {
@@ -68,8 +71,22 @@ export function packParams(inputs: PhotonInputs, extra: ParamsExtra): Uint32Arra
     samples: extra.samples,
     queryCount: extra.queryCount,
     cellCount: grid.dims[0] * grid.dims[1] * grid.dims[2],
+    rowStart: extra.rowStart ?? 0,
+    rowEnd: extra.rowEnd ?? extra.height,
   });
 }
+
+/**
+ * GPU time one band of gatherImage may take (ms). The gather is most of a photon-map
+ * frame (≈ 150 ms of 190 at 64×48 on SwiftShader) and the GPU runs a dispatch to its end,
+ * so one dispatch held the next input's preview behind it (issue 23): it goes in bands of
+ * rows of about this much work, and an input is checked before each.
+ */
+export const GATHER_BAND_BUDGET_MS = 20;
+/** Rows of the first gather band, before any gather has been timed. */
+const GATHER_FIRST_BAND_ROWS = 8;
+/** GPU ms per pixel of the last gather band timed (any call): sizes the next gathers. */
+let gatherMsPerPixel: number | null = null;
 
 export interface PhotonMapGpuResult {
   image: Float32Array;
@@ -126,6 +143,10 @@ export async function renderPhotonMapGpu(
     queries?: Float32Array<ArrayBuffer>;
     viewCount?: number;
     skipImage?: boolean;
+    /** An input: the gather stops before its next band with an AbortError. */
+    signal?: AbortSignal;
+    /** Rows per gather band, instead of bands sized to GATHER_BAND_BUDGET_MS. */
+    bandRows?: number;
   } = {},
 ): Promise<PhotonMapGpuResult> {
   const grid = gridFor(inputs.radius);
@@ -178,32 +199,106 @@ export async function renderPhotonMapGpu(
         queryPoints: [0, 4, 5, 6, 7],
       };
       const start = performance.now();
-      await withErrorScopes(device, 'photon map', () => {
+      const encodePass = (
+        timer: ReturnType<typeof lease.timer>,
+        uniform: Bound,
+        entries: readonly (readonly [string, number, number])[],
+      ): void => {
         const encoder = device.createCommandEncoder();
         const pass = encoder.beginComputePass(timer.passDescriptor());
-        const dispatch = (entry: string, x: number, y = 1): void => {
+        for (const [entry, x, y] of entries) {
           const p = pipeline(device, code, entry);
+          const bound: Record<number, Bound> = { ...resources, 0: uniform };
           pass.setPipeline(p);
           pass.setBindGroup(
             0,
             gpuCore(device).bufferBindGroup(
               p,
-              bindings[entry]!.map((binding) => ({ binding, ...resources[binding]! })),
+              bindings[entry]!.map((binding) => ({ binding, ...bound[binding]! })),
             ),
           );
           pass.dispatchWorkgroups(Math.max(1, x), Math.max(1, y));
-        };
-        if (!options.photonsIn) dispatch('tracePhotons', Math.ceil(inputs.photons / 64));
-        dispatch('countCells', Math.ceil(capacity / 64));
-        dispatch('prefixCells', 1);
-        dispatch('scatterPhotons', Math.ceil(capacity / 64));
-        if (!options.skipImage)
-          dispatch('gatherImage', Math.ceil(width / 8), Math.ceil(height / 8));
-        if (queryCount > 0) dispatch('queryPoints', Math.ceil(queryCount / 64));
+        }
         pass.end();
         timer.resolve(encoder);
         device.queue.submit([encoder.finish()]);
-      });
+      };
+      // The map: trace, histogram, prefix sums and the sort into cells (and the queries).
+      const mapEntries: [string, number, number][] = [];
+      if (!options.photonsIn) mapEntries.push(['tracePhotons', Math.ceil(inputs.photons / 64), 1]);
+      mapEntries.push(['countCells', Math.ceil(capacity / 64), 1]);
+      mapEntries.push(['prefixCells', 1, 1]);
+      mapEntries.push(['scatterPhotons', Math.ceil(capacity / 64), 1]);
+      // Queries write `image` too: callers that query skip the image (skipImage).
+      if (queryCount > 0) mapEntries.push(['queryPoints', Math.ceil(queryCount / 64), 1]);
+      const gatherEntry = (rows: number): [string, number, number] => [
+        'gatherImage',
+        Math.ceil(width / 8),
+        Math.ceil(rows / 8),
+      ];
+      // A gather expected to fit the budget (a preview) goes in the map's own pass: bands
+      // cost a read-back each (≈ 10–20 ms in Chrome on SwiftShader).
+      const expected = gatherMsPerPixel === null ? null : gatherMsPerPixel * width * height;
+      const oneBand =
+        options.skipImage ||
+        (options.bandRows === undefined &&
+          expected !== null &&
+          expected <= 1.5 * GATHER_BAND_BUDGET_MS);
+      await withErrorScopes(device, 'photon map', () =>
+        encodePass(
+          timer,
+          uniform,
+          oneBand && !options.skipImage ? [...mapEntries, gatherEntry(height)] : mapEntries,
+        ),
+      );
+      let gpuMs = await timer.read();
+      if (oneBand && !options.skipImage && gpuMs !== null && expected !== null)
+        // The pass holds the map too: count only the gather's share of the estimate.
+        gatherMsPerPixel = Math.min(gatherMsPerPixel ?? Infinity, gpuMs / (width * height));
+      // Otherwise the gather, band by band (GATHER_BAND_BUDGET_MS), each with its own
+      // parameters and timer, checking `signal` before each.
+      if (!oneBand) {
+        let msPerRow = gatherMsPerPixel === null ? null : gatherMsPerPixel * width;
+        let next = 0;
+        while (next < height) {
+          if (options.signal?.aborted)
+            throw new DOMException('the photon map is no longer needed', 'AbortError');
+          let rows =
+            options.bandRows !== undefined
+              ? Math.max(1, Math.floor(options.bandRows))
+              : msPerRow === null
+                ? GATHER_FIRST_BAND_ROWS
+                : Math.max(1, Math.floor(GATHER_BAND_BUDGET_MS / Math.max(msPerRow, 1e-6)));
+          // A last sliver joins the band before it.
+          if (height - next - rows < rows / 2) rows = height - next;
+          const bandParams = packParams(runInputs, {
+            width,
+            height,
+            seed: inputs.seed,
+            samples,
+            queryCount,
+            rowStart: next,
+            rowEnd: next + rows,
+          });
+          if (options.photonsIn) bandParams[48] = capacity;
+          const bandUniform = {
+            buffer: lease.upload('photon-map.params.band', bandParams, GPUBufferUsage.UNIFORM),
+            size: bandParams.byteLength,
+          };
+          const bandTimer = lease.timer();
+          await withErrorScopes(device, 'photon map gather', () =>
+            encodePass(bandTimer, bandUniform, [gatherEntry(rows)]),
+          );
+          const ms = await bandTimer.read();
+          if (ms === null || gpuMs === null) gpuMs = null;
+          else gpuMs += ms;
+          if (ms !== null) {
+            msPerRow = ms / rows;
+            gatherMsPerPixel = msPerRow / width;
+          }
+          next += rows;
+        }
+      }
       const counterData = new Uint32Array(await readBuffer(device, counters.buffer, 4));
       const wallMs = performance.now() - start;
       const stored = Math.min(counterData[0]!, capacity);
@@ -220,7 +315,6 @@ export async function renderPhotonMapGpu(
           view[4 * i + 3] = rawU32[i * RECORD_WORDS + 7]!;
         }
       }
-      const gpuMs = await timer.read();
       return {
         image: imageData.slice(0, width * height),
         stored,

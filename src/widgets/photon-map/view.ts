@@ -39,6 +39,8 @@ import { CPU_MAX_PHOTONS, SWEEP_ROWS, type PhotonFrame, type PhotonImages } from
 const VIEW_SIZE = { width: 256, height: 192 } as const;
 const VIEW_PHOTONS = 16384;
 const PT_PASS_SPP = 4;
+/** GPU time one path-tracing pass of a frame may take (ms): an input waits for the pass in flight. */
+const PT_PASS_BUDGET_MS = 20;
 /** The photon-map image's jittered rays per pixel. */
 const GATHER_SAMPLES = 1;
 /** Paths per pixel the CPU path tracer stops at even if it has time left. */
@@ -111,6 +113,8 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
   };
 
   /** Photon map at the inputs, then path tracing until it has used as much time. */
+  /** GPU ms per path sample (one pixel, one sample) of the last pass: sizes the next passes. */
+  let ptMsPerSample: number | null = null;
   const renderBoth = async (
     backend: Backend<GpuContext>,
     inputs: PhotonInputs,
@@ -128,23 +132,42 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
       const height = GPU_SIZE.height / pixelScale;
       const pm = await renderPhotonMapGpu(device, linked, inputs, width, height, GATHER_SAMPLES, {
         viewCount: VIEW_PHOTONS,
+        ...(signal ? { signal } : {}),
       });
       const sum = new Float64Array(width * height);
       let ptMs = 0;
       let spp = 0;
       for (let pass = 0; ; pass++) {
+        // An input stops the path tracer between passes: the next picture would otherwise
+        // queue behind every pass still to come on the GPU (issue 23).
+        if (signal?.aborted) throw new DOMException('the frame is no longer needed', 'AbortError');
+        // Equal time: passes of PT_PASS_SPP, or, once a pass has been timed, as many
+        // PT_PASS_SPP as fit the time still to match, at most PT_PASS_BUDGET_MS of it (each
+        // pass is a read-back: 4 spp at a time cost a preview 5 of them).
+        const passSpp =
+          ptSppTarget === undefined && ptMsPerSample !== null
+            ? PT_PASS_SPP *
+              Math.max(
+                1,
+                Math.floor(
+                  Math.min(pm.milliseconds - ptMs, PT_PASS_BUDGET_MS) /
+                    (PT_PASS_SPP * ptMsPerSample * width * height),
+                ),
+              )
+            : PT_PASS_SPP;
         const r = await pathTraceGpu(
           device,
           linked,
           inputs,
           width,
           height,
-          PT_PASS_SPP,
+          passSpp,
           inputs.seed + 7919 * pass,
         );
         for (let i = 0; i < sum.length; i++) sum[i]! += r.sum[i]!;
         ptMs += r.milliseconds;
-        spp += PT_PASS_SPP;
+        spp += passSpp;
+        ptMsPerSample = r.milliseconds / (passSpp * width * height);
         if (ptSppTarget !== undefined ? spp >= ptSppTarget : ptMs >= pm.milliseconds) break;
       }
       return {
