@@ -1071,6 +1071,12 @@ export function oneMediumLightContribution(
   state: RngState,
 ): Rgb {
   const sample = deltaLightSample(scene, light, position);
+  // A surface between the point and the light blocks it (shadowTransmittance).
+  if (
+    on(scene, 'surfaces') &&
+    closestSurface(scene, position, sample.direction, sample.distance).t < SURFACE_NO_HIT
+  )
+    return [0, 0, 0];
   const phase = mediumPhaseEval(scene, medium, wo, sample.direction);
   const unshadowed = sample.irradiance.map((e) => e * phase) as Rgb;
   if (!anyPositive(unshadowed)) return [0, 0, 0];
@@ -1083,12 +1089,10 @@ export function oneMediumLightContribution(
 }
 
 /**
- * Single scattering in one homogeneous medium: one point t = t₀ + s of the view segment,
- * s drawn from the exponential of the mean σt truncated to the segment's length, weighted
- * T(s)·σs / pdf(s) and lit by oneMediumDirectLighting. With the plan's equiangular
- * sampling, each point or spot light first gets its own equiangular point, lit by it
- * alone (oneMediumEquiangularPoint), and the free-flight point takes the distant lights
- * only: estimateSingleScattering's vertices for this scene, in its order.
+ * Single scattering in one homogeneous medium, among surfaces if the scene has them: the
+ * view ray stops at the closest surface, the medium's part is oneMediumScatteredAlong and
+ * the surface's point is lit by vertexDirectLighting through T of the medium's part;
+ * estimateSingleScattering's vertices, random numbers and order for this scene.
  */
 export function estimateSingleScatteringOneMedium(
   scene: SceneData,
@@ -1097,7 +1101,79 @@ export function estimateSingleScatteringOneMedium(
   state: RngState,
 ): Rgb {
   const medium = sceneMedium(scene, 0);
-  const segment = mediumSegment(medium, origin, direction, 0, RAY_T_LIMIT);
+  const hit: SurfaceHit = on(scene, 'surfaces')
+    ? closestSurface(scene, origin, direction, RAY_T_LIMIT)
+    : { t: SURFACE_NO_HIT, index: 0 };
+  const segment = mediumSegment(medium, origin, direction, 0, Math.min(hit.t, RAY_T_LIMIT));
+  const radiance = oneMediumScatteredAlong(scene, medium, origin, direction, segment, state);
+  if (!on(scene, 'surfaceScattering') || !(hit.t < SURFACE_NO_HIT) || sceneHeader(scene)[3] < 1)
+    return radiance;
+  // An empty medium segment (the ray misses the medium) lets everything through.
+  const crossed = segment[0] < segment[1] ? segment[1] - segment[0] : 0;
+  const vertex = surfaceVertex(sceneSurface(scene, hit.index), origin, direction, hit.t);
+  return add(
+    radiance,
+    mul(
+      transmittanceBeer(add(medium.sigmaA, medium.sigmaS), crossed),
+      oneMediumSurfaceLighting(scene, medium, vertex),
+    ),
+  );
+}
+
+/**
+ * vertexDirectLighting at a surface vertex of the one-medium kernel: every delta light's
+ * (ρ/π)·max(0, n·ω)·E, blocked by any surface before the light and seen through Beer's law
+ * over the shadow ray's part in the medium.
+ */
+export function oneMediumSurfaceLighting(
+  scene: SceneData,
+  medium: SceneMedium,
+  vertex: Vertex,
+): Rgb {
+  let radiance: Rgb = [0, 0, 0];
+  if (!(on(scene, 'lightDirectional') || on(scene, 'lightPoint') || on(scene, 'lightSpot')))
+    return radiance;
+  const sigmaT = add(medium.sigmaA, medium.sigmaS);
+  const count = Math.min(sceneHeader(scene)[1], SCENE_MAX_LIGHTS);
+  for (let i = 0; i < count; i++) {
+    const sample = deltaLightSample(scene, sceneLight(scene, i), vertex.position);
+    const unshadowed = mul(
+      scale(
+        lambertianBrdf(vertex.albedo) as Rgb,
+        Math.max(dot(vertex.normal, sample.direction), 0),
+      ),
+      sample.irradiance as Rgb,
+    );
+    if (
+      !anyPositive(unshadowed) ||
+      closestSurface(scene, vertex.position, sample.direction, sample.distance).t < SURFACE_NO_HIT
+    )
+      continue;
+    const segment = mediumSegment(medium, vertex.position, sample.direction, 0, sample.distance);
+    radiance = add(
+      radiance,
+      mul(unshadowed, transmittanceBeer(sigmaT, Math.max(segment[1] - segment[0], 0))),
+    );
+  }
+  return radiance;
+}
+
+/**
+ * The medium's part of estimateSingleScatteringOneMedium on the view segment [t₀, t₁]: one
+ * point t = t₀ + s, s drawn from the exponential of the mean σt truncated to the segment's
+ * length, weighted T(s)·σs / pdf(s) and lit by oneMediumDirectLighting. With the plan's
+ * equiangular sampling, each point or spot light first gets its own equiangular point, lit
+ * by it alone (oneMediumEquiangularPoint), and the free-flight point takes the distant
+ * lights only: estimateSingleScattering's vertices for this scene, in its order.
+ */
+export function oneMediumScatteredAlong(
+  scene: SceneData,
+  medium: SceneMedium,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+  state: RngState,
+): Rgb {
   const [enter, exit] = segment;
   const length = exit - enter;
   const scatters = sceneHeader(scene)[3] >= 1 && anyPositive(medium.sigmaS);

@@ -121,13 +121,15 @@ export function plan(scene: SceneDescription): Plan {
   const homogeneousScattering = scatteringMedia.some((m) => m.type === 'homogeneous');
   const equiangular = !pathTracing && volumeScattering && localLights && homogeneousScattering;
   const phases = new Set(scatteringMedia.map((m) => m.phase.type));
-  // One homogeneous medium lit by delta lights (nothing else in the scene): the one-medium
-  // kernels of shaders/integrator.wesl, which skip the segment lists and vertex records.
+  // One homogeneous medium lit by delta lights: the one-medium kernels of
+  // shaders/integrator.wesl, which skip the segment lists and vertex records. Surfaces too
+  // for single scattering (they stop the view ray and block shadow rays); the one-medium
+  // path tracer has no surface bounces.
   const oneHomogeneousMedium =
     volumeScattering &&
     media.length === 1 &&
     media[0]!.type === 'homogeneous' &&
-    !surfaces &&
+    (!surfaces || !pathTracing) &&
     !emission &&
     !kinds.has('environment');
   // One grid medium lit by delta lights, path traced: the one-medium path tracer with

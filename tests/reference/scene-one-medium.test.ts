@@ -133,6 +133,51 @@ describe('one-medium estimators = general estimators, sample by sample (float64 
     expect(expectSameSamples(withSpot.specialized, withSpot.general)).toBeGreaterThan(SIZE * SIZE);
   });
 
+  it('single scattering among surfaces: a floor inside the box, a sphere across its face, black and grey (the single-scatter widget’s scene)', async () => {
+    const scene = boxScene(1, { type: 'henyey-greenstein', g: 0.3 });
+    const [sun, point] = scene.lights;
+    const spot = {
+      type: 'spot',
+      position: [0.6, 2.5, 0.3],
+      direction: [-0.2, -1, -0.1],
+      intensity: [4, 3, 2],
+      innerAngle: 20,
+      outerAngle: 35,
+    };
+    const surfaces = [
+      // Inside the medium: view rays stop in it, and it shadows points above it.
+      { type: 'plane', point: [0, -0.6, 0], normal: [0, 1, 0], albedo: [0.5, 0.5, 0.5] },
+      // Half in, half out: shadow rays and view rays cross its edge of the box.
+      { type: 'sphere', center: [0.2, 0.9, 0.1], radius: 0.35, albedo: [0.7, 0.3, 0.2] },
+      { type: 'box', min: [-0.9, -0.6, -0.5], max: [-0.5, -0.2, -0.1], albedo: [0, 0, 0] },
+    ];
+    for (const lights of [[spot, sun], [point], [sun]]) {
+      const { specialized, general } = await twins({ ...scene, lights, surfaces });
+      expect(specialized.conditions.surfaces).toBe(true);
+      expect(specialized.conditions.surfaceScattering).toBe(true);
+      expect(expectSameSamples(specialized, general)).toBeGreaterThan(SIZE * SIZE);
+    }
+    // A view from inside the box toward the floor, so that every view ray hits a surface in it.
+    const inside = {
+      ...scene,
+      camera: { ...scene.camera, position: [0.1, 0.5, 0.8], target: [0, -0.6, 0] },
+      lights: [spot, sun],
+      surfaces,
+    };
+    const { specialized, general } = await twins(inside);
+    expect(expectSameSamples(specialized, general)).toBeGreaterThan(SIZE * SIZE * SAMPLES);
+  });
+
+  it('path tracing with surfaces keeps the general kernel (the one-medium path tracer has no surface bounces)', async () => {
+    const resolved = await sceneFrom({
+      ...boxScene('unlimited', { type: 'isotropic' }),
+      surfaces: [
+        { type: 'plane', point: [0, -0.6, 0], normal: [0, 1, 0], albedo: [0.5, 0.5, 0.5] },
+      ],
+    });
+    expect(plan(resolved.scene).conditions.oneHomogeneousMedium).toBe(false);
+  });
+
   it('path tracing, all orders, Henyey–Greenstein g = −0.3 (Russian roulette and spectral weights)', async () => {
     const { specialized, general } = await twins(
       boxScene('unlimited', { type: 'henyey-greenstein', g: -0.3 }),

@@ -270,7 +270,7 @@ describe('the planner', () => {
     });
   });
 
-  it('the one-medium kernel: one homogeneous medium under delta lights and nothing else', () => {
+  it('the one-medium kernel: one homogeneous medium under delta lights, and surfaces only for single scattering', () => {
     const sun = { type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] };
     const one = (json: Record<string, unknown>) =>
       planOf({ ...base(), media: [fog()], lights: [sun], ...json }).conditions.oneHomogeneousMedium;
@@ -284,9 +284,12 @@ describe('the planner', () => {
     expect(one({ lights: [point], scatteringOrder: 'unlimited' })).toBe(true);
     expect(one({ lights: [sun, { type: 'environment', radiance: [1, 1, 1] }] })).toBe(false);
     expect(one({ media: [fog({ emission: [1, 1, 1] })] })).toBe(false);
-    expect(
-      one({ surfaces: [{ type: 'sphere', center: [0, 0, 0], radius: 0.2, albedo: [1, 1, 1] }] }),
-    ).toBe(false);
+    const ball = { type: 'sphere', center: [0, 0, 0], radius: 0.2, albedo: [1, 1, 1] };
+    // Surfaces stop view rays and block shadow rays in the single-scattering one; the
+    // one-medium path tracer has no surface bounces.
+    expect(one({ surfaces: [ball] })).toBe(true);
+    expect(one({ surfaces: [ball], lights: [point, sun] })).toBe(true);
+    expect(one({ surfaces: [ball], scatteringOrder: 'unlimited' })).toBe(false);
     expect(one({ scatteringOrder: 0 })).toBe(false);
     expect(
       effect(planOf({ ...base(), media: [fog()], lights: [sun] }), 'integrator')?.method,
@@ -403,17 +406,25 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       expect(defines(code, fn), fn).toBe(true);
   });
 
-  it("homogeneous single scattering: Beer's law, no tracking, no grid, no emission, no path tracer", async () => {
+  it("homogeneous single scattering among surfaces: the one-medium kernel with Beer's law; no tracking, grid, emission, path tracer or segment lists", async () => {
     const code = await link({
       ...base(),
       media: [fog()],
       lights: [{ type: 'directional', direction: [0, -1, 0], irradiance: [1, 1, 1] }],
       surfaces: [{ type: 'sphere', center: [0, 0, 0], radius: 0.2, albedo: [0.5, 0.5, 0.5] }],
     });
-    expect(defines(code, 'estimateSingleScattering')).toBe(true);
-    expect(defines(code, 'shadowTransmittance')).toBe(true);
-    expect(defines(code, 'transmittanceBeer')).toBe(true);
     for (const fn of [
+      'estimateSingleScatteringOneMedium',
+      'oneMediumSurfaceLighting',
+      'closestSurface',
+      'transmittanceBeer',
+    ])
+      expect(defines(code, fn), fn).toBe(true);
+    for (const fn of [
+      'estimateSingleScattering',
+      'sceneSegments',
+      'vertexDirectLighting',
+      'shadowTransmittance',
       'sampleFreeFlight',
       'sceneGridDensity',
       'emissionClosedForm',
@@ -422,7 +433,6 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'spotFalloff',
       'equiangularSample',
       'hgEvalDirections',
-      'estimateSingleScatteringOneMedium',
     ])
       expect(defines(code, fn), fn).toBe(false);
   });

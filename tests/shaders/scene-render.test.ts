@@ -14,6 +14,7 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import type { ResolvedScene } from '../../src/scene/load.ts';
 import { plan } from '../../src/scene/plan.ts';
+import { buildScene } from '../../src/widgets/single-scatter/model.ts';
 import type { SceneRenderOptions } from '../../src/scene/renderScene.ts';
 import {
   pointLightExact,
@@ -76,6 +77,44 @@ describe('scene kernel on the GPU', () => {
         estimate,
         await gpu(scene, { kernel: 'general', spp: 1024 }),
         'point light, one-medium vs general kernel',
+      );
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'single scattering among surfaces (the single-scatter widget: fog, spot light, floor, sphere) in the one-medium kernel: GPU = twin, and = the general kernel',
+    async () => {
+      const scene = await sceneFrom(
+        buildScene(
+          {
+            medium: 'fog',
+            light: 'spot',
+            sigmaS: 0.6,
+            albedo: 0.9,
+            g: 0.3,
+            scattering: true,
+            occluder: 'sphere',
+            emission: false,
+            floor: true,
+            spp: 64,
+          },
+          { width: 8, height: 8, spp: 1024, seed: 3 },
+        ),
+      );
+      expect(plan(scene.scene).conditions).toMatchObject({
+        oneHomogeneousMedium: true,
+        surfaceScattering: true,
+        equiangular: true,
+      });
+      const specialized = await gpu(scene);
+      expectAgreement(specialized, await cpu(scene), 'single-scatter scene, GPU vs twin');
+      // The general kernel has no equiangular points (other random numbers, a noisier
+      // estimate of the spot's cone): many samples, as for the point light above.
+      expectAgreement(
+        specialized,
+        await gpu(scene, { kernel: 'general', spp: 1024 }),
+        'single-scatter scene, one-medium vs general kernel',
       );
     },
     GPU_TIMEOUT,
