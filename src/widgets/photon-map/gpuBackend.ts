@@ -244,17 +244,17 @@ export async function renderPhotonMapGpu(
         (options.bandRows === undefined &&
           expected !== null &&
           expected <= 1.5 * GATHER_BAND_BUDGET_MS);
-      await withErrorScopes(device, 'photon map', () =>
-        encodePass(
-          timer,
-          uniform,
-          oneBand && !options.skipImage ? [...mapEntries, gatherEntry(height)] : mapEntries,
-        ),
-      );
-      let gpuMs = await timer.read();
-      if (oneBand && !options.skipImage && gpuMs !== null && expected !== null)
-        // The pass holds the map too: count only the gather's share of the estimate.
-        gatherMsPerPixel = Math.min(gatherMsPerPixel ?? Infinity, gpuMs / (width * height));
+      // Submitted together, read back together: the gather has a timer of its own, so
+      // that the estimate is the gather's cost alone.
+      const wholeGather = oneBand && !options.skipImage ? lease.timer() : null;
+      await withErrorScopes(device, 'photon map', () => {
+        encodePass(timer, uniform, mapEntries);
+        if (wholeGather) encodePass(wholeGather, uniform, [gatherEntry(height)]);
+      });
+      const [mapMs, gatherMs] = await Promise.all([timer.read(), wholeGather?.read() ?? 0]);
+      let gpuMs = mapMs === null || gatherMs === null ? null : mapMs + gatherMs;
+      if (wholeGather && gatherMs !== null && gatherMs > 0)
+        gatherMsPerPixel = gatherMs / (width * height);
       // Otherwise the gather, band by band (GATHER_BAND_BUDGET_MS), each with its own
       // parameters and timer, checking `signal` before each.
       if (!oneBand) {
