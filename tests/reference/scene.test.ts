@@ -338,6 +338,12 @@ describe('the planner', () => {
     expect(conditions({})).toMatchObject({ sphereMedia: false, oneLight: true });
     expect(conditions({ lights: [sun, point] }).oneLight).toBe(false);
     expect(conditions({ lights: [] }).oneLight).toBe(false);
+    // Gray media: σa and σs equal over the channels in every medium (one exponential for
+    // the one-medium kernels' shadow rays).
+    expect(conditions({}).grayMedia).toBe(true);
+    expect(conditions({ media: [fog({ sigmaS: [1, 1, 1.1] })] }).grayMedia).toBe(false);
+    expect(conditions({ media: [fog({ sigmaA: [0, 0.1, 0] })] }).grayMedia).toBe(false);
+    expect(GENERAL_CONDITIONS.grayMedia).toBe(false);
     const ball = fog({ bounds: { type: 'sphere', center: [0, 0, 0], radius: 0.5 } });
     expect(conditions({ media: [ball] }).sphereMedia).toBe(true);
     const apart = fog({ bounds: { type: 'sphere', center: [3, 0, 0], radius: 0.5 } });

@@ -13,7 +13,11 @@
 // each distinct kernel is compiled once (the pipeline cache is per device).
 import { beforeAll, describe, expect, it } from 'vitest';
 import type { ResolvedScene } from '../../src/scene/load.ts';
+import { GpuSceneRenderer } from '../../src/scene/gpuRenderer.ts';
+import { packScene } from '../../src/scene/pack.ts';
 import { plan } from '../../src/scene/plan.ts';
+import { renderProgressive } from '../../src/scene/render.ts';
+import { SHADER_LIBRARY } from '../support/shaderLibrary.ts';
 import { buildScene } from '../../src/widgets/single-scatter/model.ts';
 import type { SceneRenderOptions } from '../../src/scene/renderScene.ts';
 import {
@@ -116,6 +120,68 @@ describe('scene kernel on the GPU', () => {
         await gpu(scene, { kernel: 'general', spp: 1024 }),
         'single-scatter scene, one-medium vs general kernel',
       );
+    },
+    GPU_TIMEOUT,
+  );
+
+  it(
+    'gray media (one exponential per shadow ray): the one-medium path tracer and single scattering, GPU = twin',
+    async () => {
+      const gray = (order: number | 'unlimited') => ({
+        image: { width: 8, height: 8 },
+        samplesPerPixel: 64,
+        seed: 9,
+        scatteringOrder: order,
+        camera: {
+          type: 'perspective',
+          position: [0.3, 0.4, 3.2],
+          target: [0, 0, 0],
+          up: [0, 1, 0],
+          fovY: 45,
+        },
+        media: [
+          {
+            type: 'homogeneous',
+            bounds: { type: 'box', min: [-1, -1, -1], max: [1, 1, 1] },
+            sigmaA: [0.1, 0.1, 0.1],
+            sigmaS: [1.5, 1.5, 1.5],
+            phase: { type: 'henyey-greenstein', g: 0.6 },
+          },
+        ],
+        lights: [
+          { type: 'directional', direction: [0.3, -0.9, -0.2], irradiance: [2, 2, 2] },
+          { type: 'point', position: [0.2, 0.5, 0.1], intensity: [0.3, 0.2, 0.1] },
+        ],
+      });
+      for (const order of ['unlimited', 1] as const) {
+        const scene = await sceneFrom(gray(order));
+        const conditions = plan(scene.scene).conditions;
+        expect(conditions).toMatchObject({ grayMedia: true, oneHomogeneousMedium: true });
+        expectAgreement(
+          await gpu(scene),
+          await cpu(scene),
+          `gray box, order ${order}, GPU vs twin`,
+        );
+        // One exponential for three equal channels is the same arithmetic: the kernel with
+        // and without grayMedia gives the same image, bit for bit.
+        const image = async (grayMedia: boolean) => {
+          const packed = packScene(scene);
+          const renderer = await GpuSceneRenderer.create(device, SHADER_LIBRARY, packed, {
+            ...conditions,
+            grayMedia,
+          });
+          try {
+            const result = await renderProgressive(renderer, packed.width, packed.height, {
+              spp: 16,
+              samplesPerPass: 16,
+            });
+            return Array.from(result.accumulator.mean());
+          } finally {
+            renderer.destroy();
+          }
+        };
+        expect(await image(true)).toEqual(await image(false));
+      }
     },
     GPU_TIMEOUT,
   );
