@@ -351,7 +351,8 @@ test('number keys recall presets from the slide title; N shows the speaker notes
     'aria-expanded',
     'true',
   );
-  expect(await slideProblems(page), 'the slide with its notes').toEqual([]);
+  // The notes change the slide's room; it refits after 400 ms of stillness (settledProblems).
+  expect(await settledProblems(page), 'the slide with its notes').toEqual([]);
   await page.keyboard.press('ArrowRight');
   await expect(notes).toBeHidden();
   await expect(page.locator('.deck-notes:visible')).toHaveCount(1);
@@ -367,7 +368,7 @@ test('number keys recall presets from the slide title; N shows the speaker notes
   await expect(widget.locator('.sb-widget')).not.toHaveClass(/is-presenting/);
   await expect(page.locator('.site-header')).toBeHidden();
   await expect(slide.locator('.deck-title')).toBeInViewport({ ratio: 1 });
-  expect(await slideProblems(page), 'the presented slide').toEqual([]);
+  expect(await settledProblems(page), 'the presented slide').toEqual([]);
   // The widget's own Present button leaves the deck's presentation too.
   await widget.getByRole('button', { name: 'Exit presentation' }).click();
   await expect(page.locator('html')).not.toHaveClass(/deck-presenting/);

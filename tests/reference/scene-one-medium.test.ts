@@ -48,6 +48,16 @@ function boxScene(order: number | 'unlimited', phase: Record<string, unknown>, p
   };
 }
 
+/** A spot light above the box, its cone across the box's top. */
+const SPOT = {
+  type: 'spot',
+  position: [0.6, 2.5, 0.3],
+  direction: [-0.2, -1, -0.1],
+  intensity: [4, 3, 2],
+  innerAngle: 20,
+  outerAngle: 35,
+};
+
 /** The box's medium as a 3³ grid with empty, thin and dense cells (null collisions). */
 function gridBoxScene(order: number | 'unlimited') {
   const scene = boxScene(order, { type: 'henyey-greenstein', g: 0.5 });
@@ -121,29 +131,13 @@ describe('one-medium estimators = general estimators, sample by sample (float64 
     const alone = await twins({ ...scene, lights: [point] });
     expect(alone.specialized.conditions.oneLight).toBe(true);
     expect(expectSameSamples(alone.specialized, alone.general)).toBeGreaterThan(SIZE * SIZE);
-    const spot = {
-      type: 'spot',
-      position: [0.6, 2.5, 0.3],
-      direction: [-0.2, -1, -0.1],
-      intensity: [4, 3, 2],
-      innerAngle: 20,
-      outerAngle: 35,
-    };
-    const withSpot = await twins({ ...scene, lights: [spot, sun] });
+    const withSpot = await twins({ ...scene, lights: [SPOT, sun] });
     expect(expectSameSamples(withSpot.specialized, withSpot.general)).toBeGreaterThan(SIZE * SIZE);
   });
 
   it('single scattering among surfaces: a floor inside the box, a sphere across its face, black and grey (the single-scatter widget’s scene)', async () => {
     const scene = boxScene(1, { type: 'henyey-greenstein', g: 0.3 });
     const [sun, point] = scene.lights;
-    const spot = {
-      type: 'spot',
-      position: [0.6, 2.5, 0.3],
-      direction: [-0.2, -1, -0.1],
-      intensity: [4, 3, 2],
-      innerAngle: 20,
-      outerAngle: 35,
-    };
     const surfaces = [
       // Inside the medium: view rays stop in it, and it shadows points above it.
       { type: 'plane', point: [0, -0.6, 0], normal: [0, 1, 0], albedo: [0.5, 0.5, 0.5] },
@@ -151,7 +145,7 @@ describe('one-medium estimators = general estimators, sample by sample (float64 
       { type: 'sphere', center: [0.2, 0.9, 0.1], radius: 0.35, albedo: [0.7, 0.3, 0.2] },
       { type: 'box', min: [-0.9, -0.6, -0.5], max: [-0.5, -0.2, -0.1], albedo: [0, 0, 0] },
     ];
-    for (const lights of [[spot, sun], [point], [sun]]) {
+    for (const lights of [[SPOT, sun], [point], [sun]]) {
       const { specialized, general } = await twins({ ...scene, lights, surfaces });
       expect(specialized.conditions.surfaces).toBe(true);
       expect(specialized.conditions.surfaceScattering).toBe(true);
@@ -161,7 +155,7 @@ describe('one-medium estimators = general estimators, sample by sample (float64 
     const inside = {
       ...scene,
       camera: { ...scene.camera, position: [0.1, 0.5, 0.8], target: [0, -0.6, 0] },
-      lights: [spot, sun],
+      lights: [SPOT, sun],
       surfaces,
     };
     const { specialized, general } = await twins(inside);
