@@ -2,6 +2,7 @@
 // shaders/kernels/translucent-{diffuse,gather,path}.wesl linked against the library and
 // dispatched with runCompute, each timed (timestamp queries, else wall time). Takes the
 // device and the library, so the widget (browser) and the tests (Dawn) run the same code.
+import { runInBands } from '../gpu/bands.ts';
 import { runCompute } from '../gpu/compute.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { packOctree, packParams, type Octree, type TranslucentScene } from './translucent.ts';
@@ -29,7 +30,7 @@ export interface PathBatch {
   timing: string;
 }
 
-/** GPU time one band of a gather may take (ms); see gather. */
+/** GPU time one band of a gather may take (ms); see gather and bands.ts. */
 export const GATHER_BAND_BUDGET_MS = 20;
 /** Bands of a gather submitted before the first is read back (hides the read-back's latency). */
 export const GATHER_BANDS_IN_FLIGHT = 2;
@@ -96,42 +97,31 @@ export class TranslucentKernels {
     const image = new Float32Array(3 * pixels);
     const visited = new Float32Array(pixels);
     const terms = new Float32Array(pixels);
-    const band = (first: number, rows: number) =>
-      runCompute(this.device, {
-        code,
-        entryPoint: 'gatherMain',
-        inputs: [nodes, samples],
-        outputWords: 5 * rows * size,
-        workgroups: [Math.ceil(size / 8), Math.ceil(rows / 8)],
-        uniforms: packParams(scene, { count: octree.nodes.length, epsilon, offset: first }),
-      }).then((result) => ({ first, rows, result }));
-    const inFlight: ReturnType<typeof band>[] = [];
-    let msPerRow: number | null = null;
-    let milliseconds = 0;
-    let wall = false;
-    let next = 0;
-    while (next < size || inFlight.length > 0) {
-      while (next < size && inFlight.length < GATHER_BANDS_IN_FLIGHT) {
-        if (signal?.aborted) {
-          for (const pending of inFlight) pending.catch(() => undefined);
-          throw new DOMException('the gather is no longer needed', 'AbortError');
-        }
-        const rows =
-          msPerRow === null
-            ? GATHER_FIRST_BAND_ROWS
-            : Math.max(1, Math.floor(GATHER_BAND_BUDGET_MS / Math.max(msPerRow, 1e-6)));
-        const take = Math.min(rows, size - next);
-        inFlight.push(band(next, take));
-        next += take;
-      }
-      const { first, rows, result } = await inFlight.shift()!;
-      const ms = result.gpuMs ?? result.wallMs;
-      if (result.gpuMs === null) wall = true;
-      milliseconds += ms;
-      msPerRow = ms / rows;
+    const { bands } = await runInBands(
+      0,
+      size,
+      {
+        budgetMs: GATHER_BAND_BUDGET_MS,
+        firstRows: GATHER_FIRST_BAND_ROWS,
+        inFlight: GATHER_BANDS_IN_FLIGHT,
+        ...(signal ? { signal } : {}),
+      },
+      async ({ start, rows }) => {
+        const result = await runCompute(this.device, {
+          code,
+          entryPoint: 'gatherMain',
+          inputs: [nodes, samples],
+          outputWords: 5 * rows * size,
+          workgroups: [Math.ceil(size / 8), Math.ceil(rows / 8)],
+          uniforms: packParams(scene, { count: octree.nodes.length, epsilon, offset: start }),
+        });
+        return { result, milliseconds: result.gpuMs ?? result.wallMs };
+      },
+    );
+    for (const { start, rows, result } of bands) {
       const out = floats(result.output);
       for (let q = 0; q < rows * size; q++) {
-        const p = first * size + q;
+        const p = start * size + q;
         image[3 * p] = out[5 * q]!;
         image[3 * p + 1] = out[5 * q + 1]!;
         image[3 * p + 2] = out[5 * q + 2]!;
@@ -139,6 +129,8 @@ export class TranslucentKernels {
         terms[p] = out[5 * q + 4]!;
       }
     }
+    const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);
+    const wall = bands.some((band) => band.result.gpuMs === null);
     return {
       image,
       visited,

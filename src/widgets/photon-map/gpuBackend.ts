@@ -6,6 +6,7 @@
 // buffers and timers come from the GPU core (buffers leased per call, cleared to
 // zero as new ones would be, and reused by the next call); the tests call the same
 // functions on Dawn's device.
+import { runInBands } from '../../gpu/bands.ts';
 import { gpuCore, type Lease } from '../../gpu/core.ts';
 import { withErrorScopes } from '../../gpu/errors.ts';
 import { packStruct } from '../../gpu/layout.ts';
@@ -77,10 +78,8 @@ export function packParams(inputs: PhotonInputs, extra: ParamsExtra): Uint32Arra
 }
 
 /**
- * GPU time one band of gatherImage may take (ms). The gather is most of a photon-map
- * frame (≈ 150 ms of 190 at 64×48 on SwiftShader) and the GPU runs a dispatch to its end,
- * so one dispatch held the next input's preview behind it (issue 23): it goes in bands of
- * rows of about this much work, and an input is checked before each.
+ * GPU time one band of gatherImage may take (ms): the gather is most of a photon-map frame
+ * (≈ 150 ms of 190 at 64×48 on SwiftShader), cut into bands of rows (bands.ts).
  */
 export const GATHER_BAND_BUDGET_MS = 20;
 /** Rows of the first gather band, before any gather has been timed. */
@@ -258,46 +257,44 @@ export async function renderPhotonMapGpu(
       // Otherwise the gather, band by band (GATHER_BAND_BUDGET_MS), each with its own
       // parameters and timer, checking `signal` before each.
       if (!oneBand) {
-        let msPerRow = gatherMsPerPixel === null ? null : gatherMsPerPixel * width;
-        let next = 0;
-        while (next < height) {
-          if (options.signal?.aborted)
-            throw new DOMException('the photon map is no longer needed', 'AbortError');
-          let rows =
-            options.bandRows !== undefined
-              ? Math.max(1, Math.floor(options.bandRows))
-              : msPerRow === null
-                ? GATHER_FIRST_BAND_ROWS
-                : Math.max(1, Math.floor(GATHER_BAND_BUDGET_MS / Math.max(msPerRow, 1e-6)));
-          // A last sliver joins the band before it.
-          if (height - next - rows < rows / 2) rows = height - next;
-          const bandParams = packParams(runInputs, {
-            width,
-            height,
-            seed: inputs.seed,
-            samples,
-            queryCount,
-            rowStart: next,
-            rowEnd: next + rows,
-          });
-          if (options.photonsIn) bandParams[48] = capacity;
-          const bandUniform = {
-            buffer: lease.upload('photon-map.params.band', bandParams, GPUBufferUsage.UNIFORM),
-            size: bandParams.byteLength,
-          };
-          const bandTimer = lease.timer();
-          await withErrorScopes(device, 'photon map gather', () =>
-            encodePass(bandTimer, bandUniform, [gatherEntry(rows)]),
-          );
-          const ms = await bandTimer.read();
-          if (ms === null || gpuMs === null) gpuMs = null;
-          else gpuMs += ms;
-          if (ms !== null) {
-            msPerRow = ms / rows;
-            gatherMsPerPixel = msPerRow / width;
-          }
-          next += rows;
-        }
+        // One band at a time: the bands share the uniform of their rows (bands.ts).
+        const { bands, msPerRow } = await runInBands(
+          0,
+          height,
+          {
+            budgetMs: GATHER_BAND_BUDGET_MS,
+            firstRows: GATHER_FIRST_BAND_ROWS,
+            inFlight: 1,
+            msPerRow: gatherMsPerPixel === null ? null : gatherMsPerPixel * width,
+            ...(options.bandRows !== undefined ? { fixedRows: options.bandRows } : {}),
+            ...(options.signal ? { signal: options.signal } : {}),
+          },
+          async ({ start, rows }) => {
+            const bandParams = packParams(runInputs, {
+              width,
+              height,
+              seed: inputs.seed,
+              samples,
+              queryCount,
+              rowStart: start,
+              rowEnd: start + rows,
+            });
+            if (options.photonsIn) bandParams[48] = capacity;
+            const bandUniform = {
+              buffer: lease.upload('photon-map.params.band', bandParams, GPUBufferUsage.UNIFORM),
+              size: bandParams.byteLength,
+            };
+            const bandTimer = lease.timer();
+            await withErrorScopes(device, 'photon map gather', () =>
+              encodePass(bandTimer, bandUniform, [gatherEntry(rows)]),
+            );
+            const ms = await bandTimer.read();
+            return { gpuMs: ms, milliseconds: ms ?? 0 };
+          },
+        );
+        if (msPerRow !== null) gatherMsPerPixel = msPerRow / width;
+        for (const band of bands)
+          gpuMs = band.gpuMs === null || gpuMs === null ? null : gpuMs + band.gpuMs;
       }
       const counterData = new Uint32Array(await readBuffer(device, counters.buffer, 4));
       const wallMs = performance.now() - start;

@@ -2,6 +2,7 @@
 // photon-mapped and the equal-time path-traced images (grey, square-root scale with a
 // labelled top), and the error-vs-time sweep, which writes its own three rows.
 // Readouts, backends and fallback: widget.ts and the base element.
+import { abortError } from '../../gpu/bands.ts';
 import type { GpuContext } from '../../gpu/device.ts';
 import { linkLibraryKernel } from '../../gpu/link.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
@@ -140,7 +141,7 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
       for (let pass = 0; ; pass++) {
         // An input stops the path tracer between passes: the next picture would otherwise
         // queue behind every pass still to come on the GPU (issue 23).
-        if (signal?.aborted) throw new DOMException('the frame is no longer needed', 'AbortError');
+        if (signal?.aborted) throw abortError('the rest of this frame');
         // Equal time: passes of PT_PASS_SPP, or, once a pass has been timed, as many
         // PT_PASS_SPP as fit the time still to match, at most PT_PASS_BUDGET_MS of it (each
         // pass is a read-back: 4 spp at a time cost a preview 5 of them).

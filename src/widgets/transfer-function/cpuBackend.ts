@@ -5,7 +5,8 @@
 import { cacheKey, workerJobs, type WorkerJobs } from '../../workers/compute.ts';
 import { timingLabel, type GpuTiming } from '../base/timing.ts';
 import type { Rgb } from '../base/imagePanel.ts';
-import type { GpuRows, VolumeRendererGpu } from './gpuBackend.ts';
+import { abortError, runInBands } from '../../gpu/bands.ts';
+import type { VolumeRendererGpu } from './gpuBackend.ts';
 import { rowsScene, type jobs as rowJobs, type RowsBand } from './jobs.ts';
 import { CPU_SIZE, emptyImage, IMAGE_SIZE, type FrameInputs, type VolumeImage } from './model.ts';
 
@@ -145,30 +146,18 @@ function addBand(
 }
 
 /**
- * GPU time one dispatch of GpuRenderer may take (ms). The GPU runs a dispatch to its end,
- * so an input waits for the dispatches in flight before its preview can start: a whole
- * 160² frame in one dispatch (126–166 ms on SwiftShader) made the first picture after an
- * input take 190–240 ms (issue 23). Bands of about this much work, at most
- * GPU_BANDS_IN_FLIGHT of them submitted at once, bound that wait.
+ * GPU time one band of GpuRenderer may take (ms): a whole 160² frame in one dispatch
+ * (126–166 ms on SwiftShader) held the next input's preview behind it (issue 23; bands.ts).
  */
 export const GPU_BAND_BUDGET_MS = 15;
-/**
- * Bands submitted before the first of them is read back: the next band runs while the
- * last one's read-back comes back (about 10 ms per band in Chrome on SwiftShader, which
- * one band at a time added to every band's time).
- */
+/** Bands submitted before the first of them is read back (bands.ts). */
 export const GPU_BANDS_IN_FLIGHT = 2;
 /** Rows of the first bands, before any band of this renderer has been timed. */
 const GPU_FIRST_BAND_ROWS = 8;
 
-const abortError = (): DOMException =>
-  new DOMException('the rows are no longer needed', 'AbortError');
-
 /**
- * The GPU kernel at IMAGE_SIZE² pixels (or a preview's fewer), timed on the GPU. Rows go
- * in bands of about GPU_BAND_BUDGET_MS each (sized from the cost per ray and voxel of
- * path measured on the bands before), one dispatch and read-back per band, at most
- * GPU_BANDS_IN_FLIGHT at a time; `signal` is checked before each band is submitted.
+ * The GPU kernel at IMAGE_SIZE² pixels (or a preview's fewer), timed on the GPU, in bands
+ * of rows (runInBands) sized from the cost per ray and voxel of path measured before.
  */
 export class GpuRenderer implements FrameRenderer {
   readonly kind = 'gpu';
@@ -182,17 +171,9 @@ export class GpuRenderer implements FrameRenderer {
     return emptyImage(size, new Float32Array(3 * size * size));
   }
 
-  /** Rows of the next band at `size` pixels per row and step Δs (voxels), within the budget. */
-  bandRows(size: number, stepVoxels: number): number {
-    if (this.msPerRayVoxel === null) return GPU_FIRST_BAND_ROWS;
-    const rowMs = (this.msPerRayVoxel * size) / Math.max(stepVoxels, 1e-3);
-    return Math.max(1, Math.min(size, Math.floor(GPU_BAND_BUDGET_MS / Math.max(rowMs, 1e-6))));
-  }
-
   /**
    * Rows [rowStart, rowEnd) band by band; an aborted `signal` rejects with an AbortError
-   * before the next band is submitted, leaving `image` as it was (bands are copied in
-   * once all are back; the ones in flight finish unread).
+   * before the next band, leaving `image` as it was (bands are copied in once all are back).
    */
   async renderInto(
     image: VolumeImage,
@@ -204,41 +185,32 @@ export class GpuRenderer implements FrameRenderer {
     signal?: AbortSignal,
   ): Promise<RowsCost> {
     const { size } = image;
-    const end = Math.min(rowEnd, size);
-    const inFlight: Promise<GpuRows>[] = [];
-    const bands: GpuRows[] = [];
-    let milliseconds = 0;
-    let timing: GpuTiming = 'gpu-timestamp';
-    let start = rowStart;
-    while (start < end || inFlight.length > 0) {
-      while (start < end && inFlight.length < GPU_BANDS_IN_FLIGHT) {
-        if (signal?.aborted) {
-          // Nobody reads these any more; their errors (a lost device) are not the caller's.
-          for (const band of inFlight) band.catch(() => undefined);
-          throw abortError();
-        }
-        const stop = Math.min(end, start + this.bandRows(size, stepVoxels));
-        inFlight.push(
-          this.gpu.renderRows({
-            inputs,
-            size,
-            stepVoxels,
-            threshold,
-            rowStart: start,
-            rowEnd: stop,
-          }),
-        );
-        start = stop;
-      }
-      const band = await inFlight.shift()!;
-      const rays = band.rows * size;
-      if (rays > 0) this.msPerRayVoxel = (band.milliseconds * Math.max(stepVoxels, 1e-3)) / rays;
-      bands.push(band);
-      milliseconds += band.milliseconds;
-      if (band.timing === 'gpu-wall') timing = 'gpu-wall';
-    }
-    if (signal?.aborted) throw abortError();
-    for (const band of bands) addBand(image, band, band.rowStart);
+    const step = Math.max(stepVoxels, 1e-3);
+    const { bands, msPerRow } = await runInBands(
+      rowStart,
+      Math.min(rowEnd, size),
+      {
+        budgetMs: GPU_BAND_BUDGET_MS,
+        firstRows: GPU_FIRST_BAND_ROWS,
+        inFlight: GPU_BANDS_IN_FLIGHT,
+        msPerRow: this.msPerRayVoxel === null ? null : (this.msPerRayVoxel * size) / step,
+        ...(signal ? { signal } : {}),
+      },
+      (band) =>
+        this.gpu.renderRows({
+          inputs,
+          size,
+          stepVoxels,
+          threshold,
+          rowStart: band.start,
+          rowEnd: band.start + band.rows,
+        }),
+    );
+    if (msPerRow !== null) this.msPerRayVoxel = (msPerRow * step) / size;
+    if (signal?.aborted) throw abortError('the rest of this picture');
+    for (const band of bands) addBand(image, band, band.start);
+    const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);
+    const timing = bands.some((band) => band.timing === 'gpu-wall') ? 'gpu-wall' : 'gpu-timestamp';
     return { milliseconds, how: timingLabel(timing), timing };
   }
 }
