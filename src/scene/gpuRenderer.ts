@@ -139,11 +139,15 @@ export class GpuSceneRenderer implements PassRenderer {
     conditions: Conditions,
   ): Promise<GpuSceneRenderer> {
     const code = await linkSceneKernel(library, conditions);
-    const pipeline = await withErrorScopes(device, 'scene kernel', () => pipelineFor(device, code));
-    const accumulation = await GpuAccumulation.create(device, library, packed.width, packed.height);
+    // The kernel, the accumulation and the upload do not depend on each other: their error
+    // scopes are answered together (errors.ts pops each call's scopes at once), one round
+    // trip to the GPU process where three in a row cost a widget's new scene 20–30 ms on
+    // SwiftShader (bench/firstPictureProbe.ts).
+    const pipelineMade = withErrorScopes(device, 'scene kernel', () => pipelineFor(device, code));
+    const accumulationMade = GpuAccumulation.create(device, library, packed.width, packed.height);
     const made: (GPUBuffer | GPUTexture)[] = [];
     const outputBytes = PASS_WORDS_PER_PIXEL * 4 * packed.width * packed.height;
-    const parts = await withErrorScopes(device, 'scene upload', () => {
+    const partsMade = withErrorScopes(device, 'scene upload', () => {
       const records = device.createBuffer({
         size: packed.records.byteLength,
         usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
@@ -178,11 +182,27 @@ export class GpuSceneRenderer implements PassRenderer {
         ],
       });
       return { bindGroup, output, uniforms };
-    }).catch((error: unknown) => {
-      for (const r of made) r.destroy();
-      accumulation.destroy();
-      throw error;
     });
+    const [pipelineResult, accumulationResult, partsResult] = await Promise.allSettled([
+      pipelineMade,
+      accumulationMade,
+      partsMade,
+    ]);
+    if (
+      pipelineResult.status === 'rejected' ||
+      accumulationResult.status === 'rejected' ||
+      partsResult.status === 'rejected'
+    ) {
+      for (const r of made) r.destroy();
+      if (accumulationResult.status === 'fulfilled') accumulationResult.value.destroy();
+      const failed = [pipelineResult, accumulationResult, partsResult].find(
+        (result) => result.status === 'rejected',
+      );
+      throw (failed as PromiseRejectedResult).reason;
+    }
+    const pipeline = pipelineResult.value;
+    const accumulation = accumulationResult.value;
+    const parts = partsResult.value;
     return new GpuSceneRenderer(
       device,
       pipeline,
