@@ -73,7 +73,7 @@ interface ReferenceJob {
   accumulations: Record<Order, Accumulation>;
   done: boolean;
   cancelled: boolean;
-  /** Samples per pixel of the next reference pass, sized to REFERENCE_FRAME_MS. */
+  /** Samples per pixel of the next reference pass, sized to REFERENCE_STEP_MS. */
   passSpp: number;
 }
 
@@ -100,13 +100,15 @@ const MAX_CACHED_REFERENCES = 8;
  * frames of seconds on a CPU WebGPU. Its size adapts to the measured cost per sample.
  */
 const REFERENCE_FRAME_MS = 120;
+/** One reference pass (one order's image) of that time: what an input may wait behind. */
+const REFERENCE_STEP_MS = 20;
 /**
  * Share of the first-picture budget (refinement.ts) the preview's passes may use: the
  * rest is the display passes, the statistics and the page's own frame.
  */
 const PREVIEW_SHARE = 0.6;
 /** Time the image passes of one background frame may take (both orders together, ms). */
-const BACKGROUND_FRAME_MS = 60;
+const BACKGROUND_FRAME_MS = 40;
 
 /** Frees a cached reference: its renderers while unfinished, else its moments. */
 function destroyReference(job: ReferenceJob): void {
@@ -338,26 +340,31 @@ export function createView(
     const job = current.reference;
     if (!job || job.done || job.cancelled || !job.renderers) return;
     const { budget } = current;
+    // Steps of about REFERENCE_STEP_MS each, one order at a time, until the frame's
+    // REFERENCE_FRAME_MS are spent: an input waits for at most the step in flight (the GPU
+    // runs a submitted pass to its end; a 60-ms pass made first pictures 130 ms late).
     let spent = 0;
-    let rendered = 0;
-    for (const order of ORDERS) {
-      const accumulation = job.accumulations[order];
-      const passSpp = Math.min(job.passSpp, budget.referencePass);
-      const samples = Math.min(passSpp, budget.referenceSpp - accumulation.samples);
-      if (samples <= 0 || signal.aborted || !job.renderers) continue;
-      const output = await job.renderers[order].renderPass(accumulation.samples, samples);
-      spent += output.milliseconds;
-      rendered += samples;
-    }
-    if (rendered > 0 && spent > 0) {
-      const perSample = spent / rendered; // ms per spp of one order's image
-      job.passSpp = Math.max(
-        1,
-        Math.min(
-          budget.referencePass,
-          Math.floor(REFERENCE_FRAME_MS / (ORDERS.length * perSample)),
-        ),
-      );
+    for (let step = 0; step < REFERENCE_FRAME_MS / REFERENCE_STEP_MS; step++) {
+      let rendered = 0;
+      let stepMs = 0;
+      for (const order of ORDERS) {
+        const accumulation = job.accumulations[order];
+        const samples = Math.min(job.passSpp, budget.referenceSpp - accumulation.samples);
+        if (samples <= 0 || signal.aborted || !job.renderers || run !== current) continue;
+        const output = await job.renderers[order].renderPass(accumulation.samples, samples);
+        stepMs += output.milliseconds;
+        rendered += samples;
+      }
+      if (rendered === 0) break;
+      spent += stepMs;
+      if (stepMs > 0) {
+        const perSample = stepMs / rendered; // ms per spp of one order's image
+        job.passSpp = Math.max(
+          1,
+          Math.min(budget.referencePass, Math.floor(REFERENCE_STEP_MS / perSample)),
+        );
+      }
+      if (spent >= REFERENCE_FRAME_MS || signal.aborted || run !== current) break;
     }
     if (ORDERS.every((order) => job.accumulations[order].samples >= budget.referenceSpp)) {
       // Keep the moments (on the GPU for a GPU run), free the scene and its kernels.
@@ -371,18 +378,28 @@ export function createView(
     }
   };
 
-  /** One frame's passes: `count` more samples per pixel in both images. */
+  /**
+   * One frame's passes: `count` more samples per pixel in both images. Both passes are
+   * submitted before either is awaited: their read-backs (the GPU timestamps) come back
+   * in one round trip instead of two.
+   */
   const frame = async (current: Run, count: number, signal: AbortSignal): Promise<void> => {
     const { budget } = current;
     if (paused) return;
-    for (const order of ORDERS) {
+    const passes = ORDERS.map((order) => {
       const image = current.images[order];
       const have = image.accumulation.samples;
       const samples = Math.min(count, budget.maxSpp - have);
-      // A new input stops the old scene between passes (its frame is dropped).
-      if (samples <= 0 || signal.aborted) continue;
-      const output = await image.renderer.renderPass(have, samples);
-      if (run !== current) return;
+      // A new input stops the old scene between frames (its frame is dropped).
+      if (samples <= 0 || signal.aborted) return null;
+      return image.renderer.renderPass(have, samples);
+    });
+    const outputs = await Promise.all(passes);
+    if (run !== current) return;
+    for (const [i, order] of ORDERS.entries()) {
+      const output = outputs[i];
+      if (!output) continue;
+      const image = current.images[order];
       image.milliseconds += output.milliseconds;
       image.lastPassMs = output.milliseconds;
       image.timing = output.timing ?? image.renderer.timing;
@@ -543,10 +560,19 @@ export function createView(
     stage: (samples: number) => Refinement,
   ): Promise<VolumePathTracerFrame | null> => {
     const { images } = current;
+    // Both pictures and both reductions (64 bytes each: the readouts' numbers) at once: the
+    // draws' error scopes and the read-backs come back in one round trip, not four in a row.
+    const painted = Promise.all(
+      ORDERS.map((order) => paint(order, current, images[order].accumulation)),
+    );
+    const reduced = Promise.all([
+      images.single.accumulation.statistics(),
+      images.multiple.accumulation.statistics(),
+    ]);
+    const [, [single, multiple]] = await Promise.all([painted, reduced]);
+    if (run !== current) return null;
     for (const order of ORDERS) {
       const image = images[order];
-      await paint(order, current, image.accumulation);
-      if (run !== current) return null;
       const caption = captions[order];
       if (caption)
         caption.textContent = `${order === 'single' ? 'Single scattering (order 1)' : 'Multiple scattering (all orders)'}: ${image.accumulation.samples} spp`;
@@ -555,11 +581,6 @@ export function createView(
         `${order === 'single' ? 'Single' : 'Multiple'} scattering image, ${image.accumulation.samples} samples per pixel`,
       );
     }
-    // Both reductions at once (64 bytes each): the readouts' numbers.
-    const [single, multiple] = await Promise.all([
-      images.single.accumulation.statistics(),
-      images.multiple.accumulation.statistics(),
-    ]);
     const stats: Record<Order, ImageStatistics> = { single, multiple };
     if (run !== current) return null;
     if (withReference && !paused && !signal.aborted) {
