@@ -371,7 +371,7 @@ const TransferFunction = /* @__PURE__ */ struct('TransferFunction', 336, 16, {
   values: [16, /* @__PURE__ */ array(vec4f, 4, 16)],
   rgba: [80, /* @__PURE__ */ array(vec4f, 16, 16)],
 });
-const TranslucentParams = /* @__PURE__ */ struct('TranslucentParams', 112, 16, {
+const TranslucentParams = /* @__PURE__ */ struct('TranslucentParams', 128, 16, {
   size: [0, u32],
   count: [4, u32],
   seed: [8, u32],
@@ -385,6 +385,7 @@ const TranslucentParams = /* @__PURE__ */ struct('TranslucentParams', 112, 16, {
   toLight: [64, vec4f],
   lightU: [80, vec4f],
   lightV: [96, vec4f],
+  rowStart: [112, u32],
 });
 const RoomParams = /* @__PURE__ */ struct('RoomParams', 80, 16, {
   size: [0, u32],

@@ -413,6 +413,7 @@ export function packParams(
     epsilon?: number;
     ambient?: number;
     maxBounces?: number;
+    rowStart?: number;
   },
 ): Uint32Array<ArrayBuffer> {
   const [lu, lv] = lightBasis(scene.toLight);
@@ -430,6 +431,7 @@ export function packParams(
     toLight: [...scene.toLight, scene.irradiance],
     lightU: [...lu, extra.maxBounces ?? 4096],
     lightV: [...lv, 0],
+    rowStart: extra.rowStart ?? 0,
   });
 }
 

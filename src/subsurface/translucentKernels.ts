@@ -36,6 +36,8 @@ export const GATHER_BAND_BUDGET_MS = 20;
 export const GATHER_BANDS_IN_FLIGHT = 2;
 /** Rows of a gather's first bands, before its cost per row is known. */
 const GATHER_FIRST_BAND_ROWS = 4;
+/** Rows of a path batch's first band when no batch has been timed yet (8 ms per row at 1 spp). */
+const PATH_FIRST_BAND_ROWS = 2;
 
 const workgroups = (size: number): [number, number] => [Math.ceil(size / 8), Math.ceil(size / 8)];
 const floats = (words: Uint32Array): Float32Array =>
@@ -44,6 +46,8 @@ const floats = (words: Uint32Array): Float32Array =>
 export class TranslucentKernels {
   private packedFor: Octree | null = null;
   private packed: { nodes: Uint32Array; samples: Uint32Array } | null = null;
+  /** GPU ms per image row and sample of the last path batch (null: none yet). */
+  private pathMsPerRowSample: number | null = null;
 
   constructor(
     private readonly device: GPUDevice,
@@ -140,7 +144,15 @@ export class TranslucentKernels {
     };
   }
 
-  /** `samples` path-traced samples per pixel, the first with index `offset` of stream `seed`. */
+  /**
+   * `samples` path-traced samples per pixel, the first with index `offset` of stream `seed`.
+   *
+   * The image goes in bands of rows of about GATHER_BAND_BUDGET_MS of GPU time each, as the
+   * gather does: one sample per pixel of the widget's default skin took 520 ms in one
+   * dispatch on SwiftShader, and an input's picture waited for all of it (issue 23).
+   * `signal`, checked before each band, rejects with an AbortError. The first band is sized
+   * from the time per row and sample of the call before.
+   */
   async pathBatch(
     scene: TranslucentScene,
     options: {
@@ -149,28 +161,54 @@ export class TranslucentKernels {
       seed: number;
       ambient?: number;
       maxBounces?: number;
+      signal?: AbortSignal;
     },
   ): Promise<PathBatch> {
     const code = await linkLibraryKernel(this.library, 'kernels/translucent-path.wesl');
-    const result = await runCompute(this.device, {
-      code,
-      entryPoint: 'pathMain',
-      inputs: [],
-      outputWords: 7 * scene.size * scene.size,
-      workgroups: workgroups(scene.size),
-      uniforms: packParams(scene, {
-        count: options.samples,
-        seed: options.seed,
-        offset: options.offset,
-        ...(options.ambient !== undefined ? { ambient: options.ambient } : {}),
-        ...(options.maxBounces !== undefined ? { maxBounces: options.maxBounces } : {}),
-      }),
-    });
+    const size = scene.size;
+    const { samples } = options;
+    const known = this.pathMsPerRowSample;
+    const { bands } = await runInBands(
+      0,
+      size,
+      {
+        budgetMs: GATHER_BAND_BUDGET_MS,
+        firstRows: PATH_FIRST_BAND_ROWS,
+        inFlight: GATHER_BANDS_IN_FLIGHT,
+        msPerRow: known === null ? null : known * samples,
+        ...(options.signal ? { signal: options.signal } : {}),
+      },
+      async ({ start, rows }) => {
+        const result = await runCompute(this.device, {
+          code,
+          entryPoint: 'pathMain',
+          inputs: [],
+          outputWords: 7 * rows * size,
+          workgroups: [Math.ceil(size / 8), Math.ceil(rows / 8)],
+          uniforms: packParams(scene, {
+            count: samples,
+            seed: options.seed,
+            offset: options.offset,
+            rowStart: start,
+            ...(options.ambient !== undefined ? { ambient: options.ambient } : {}),
+            ...(options.maxBounces !== undefined ? { maxBounces: options.maxBounces } : {}),
+          }),
+        });
+        return { result, milliseconds: result.gpuMs ?? result.wallMs };
+      },
+    );
+    // The mean over the image, not the last band's (the rows below the sphere cost nearly
+    // nothing, and a next batch sized by them went in one band of 35 ms).
+    const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);
+    if (milliseconds > 0 && samples > 0) this.pathMsPerRowSample = milliseconds / size / samples;
+    const sums = new Float32Array(7 * size * size);
+    for (const { start, rows, result } of bands)
+      sums.set(floats(result.output).subarray(0, 7 * rows * size), 7 * start * size);
     return {
-      sums: floats(result.output),
-      samples: options.samples,
-      milliseconds: result.gpuMs ?? result.wallMs,
-      timing: result.gpuMs === null ? 'gpu-wall' : 'gpu-timestamp',
+      sums,
+      samples,
+      milliseconds,
+      timing: bands.some((band) => band.result.gpuMs === null) ? 'gpu-wall' : 'gpu-timestamp',
     };
   }
 }

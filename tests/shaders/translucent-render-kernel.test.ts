@@ -135,6 +135,34 @@ describe('translucent kernels on the GPU (Dawn)', () => {
     ).rejects.toMatchObject({ name: 'AbortError' });
   });
 
+  it('path batches in bands: the same sums whatever the cut, and an input stops them with an AbortError', async () => {
+    const s = scene({ size: 16 });
+    // A fresh instance cuts its first batch into a first band of 2 rows and the rest by
+    // the budget; the second batch is cut by the time per row the first measured.
+    const kernels = new TranslucentKernels(await nodeDevice(), SHADER_LIBRARY);
+    const options = { samples: 2, offset: 0, seed: 11 };
+    const first = await kernels.pathBatch(s, options);
+    const again = await kernels.pathBatch(s, options);
+    // Bit for bit: each pixel draws its own random stream, whatever band it is in.
+    expect(Array.from(again.sums)).toEqual(Array.from(first.sums));
+    // Every row of the sphere was traced (a band that ignored its first row leaves zeros).
+    for (let row = 2; row < 14; row++) {
+      const centre = 7 * (row * s.size + s.size / 2);
+      expect(
+        first.sums[centre]! + first.sums[centre + 1]! + first.sums[centre + 2]!,
+      ).toBeGreaterThan(0);
+    }
+    // A third instance cut into single rows (a huge time per row) gives the same sums.
+    const rows = new TranslucentKernels(await nodeDevice(), SHADER_LIBRARY);
+    (rows as unknown as { pathMsPerRowSample: number }).pathMsPerRowSample = 1e6;
+    expect(Array.from((await rows.pathBatch(s, options)).sums)).toEqual(Array.from(first.sums));
+    const controller = new AbortController();
+    controller.abort();
+    await expect(
+      kernels.pathBatch(s, { ...options, signal: controller.signal }),
+    ).rejects.toMatchObject({ name: 'AbortError' });
+  });
+
   it('the Lambertian kernel matches its twin', async () => {
     const kernels = new TranslucentKernels(await nodeDevice(), SHADER_LIBRARY);
     const s = scene();

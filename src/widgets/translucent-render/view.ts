@@ -302,10 +302,13 @@ export function createView(
         if (!current()) return;
         if (!scene || scene.size * scene.size !== job.accumulator.pixels) return;
         const samples = Math.min(perStep, job.target - job.accumulator.samples);
+        // In bands of rows: an input stops the step between two (the step's samples are
+        // drawn again when the reference resumes, from the same offset).
         const batch = await backend.renderer.pathBatch(scene, {
           samples,
           offset: job.accumulator.samples,
           seed: Number(context.values['seed']),
+          signal: input,
         });
         // A step that an input overtook is still this reference's: kept.
         if (!alive()) return;
@@ -325,6 +328,8 @@ export function createView(
       if (status)
         status.textContent = `Path tracing done: ${job.accumulator.samples} samples per pixel.`;
     } catch (error) {
+      // An input stopped the step: the reference resumes after the input's full frame.
+      if (error instanceof DOMException && error.name === 'AbortError') return;
       if (status)
         status.textContent = `Path tracing failed: ${error instanceof Error ? error.message : String(error)}`;
     } finally {
