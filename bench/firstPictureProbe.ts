@@ -11,7 +11,8 @@
 // picture after it is printed: what was still compiling, reading back or computing in
 // the worker when the input came, and what the first picture waited for; then when the
 // page's next animation frame came (the picture is on screen with that frame).
-//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N]
+// With --stacks, each submit and read-back names its callers (build with --minify false).
+//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks]
 import { chromium } from 'playwright-core';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
@@ -21,15 +22,20 @@ import { servePreview, markFirstSlider } from './previewPage.ts';
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 
 /** Installed before the page's scripts: wraps the GPU calls that can stall a frame. */
-const WRAP = `(() => {
+const WRAP = `((stacks) => {
   const log = [];
+  // With --stacks: the calling functions of each entry (readable in an unminified build).
+  const caller = () => stacks
+    ? (new Error().stack || '').split('\\n').slice(3, 11)
+        .map((line) => line.trim().replace(/^at /, '').replace(/ \\(.*\\)$/, '')).join(' < ')
+    : '';
   window.__probe = log;
   const wrapAsync = (proto, name, what) => {
     if (!proto || !proto[name]) return;
     const original = proto[name];
     proto[name] = function (...args) {
       const entry = { what, start: performance.now(), end: null,
-        label: (args[0] && args[0].label) || '' };
+        label: (args[0] && args[0].label) || (this && this.label) || caller() };
       log.push(entry);
       const result = original.apply(this, args);
       Promise.resolve(result).then(
@@ -56,9 +62,10 @@ const WRAP = `(() => {
     wrapSync(GPUDevice.prototype, 'createShaderModule', 'shader module');
     wrapAsync(GPUBuffer.prototype, 'mapAsync', 'mapAsync');
     wrapAsync(GPUQueue.prototype, 'onSubmittedWorkDone', 'onSubmittedWorkDone');
+    wrapAsync(GPUDevice.prototype, 'popErrorScope', 'popErrorScope');
     const submit = GPUQueue.prototype.submit;
     GPUQueue.prototype.submit = function (...args) {
-      log.push({ what: 'submit', start: performance.now(), end: performance.now(), label: '' });
+      log.push({ what: 'submit', start: performance.now(), end: performance.now(), label: caller() });
       return submit.apply(this, args);
     };
   }
@@ -106,7 +113,7 @@ const WRAP = `(() => {
         log.push({ what: 'long task', start: e.startTime, end: e.startTime + e.duration, label: '' });
     }).observe({ type: 'longtask', buffered: true });
   } catch (error) { /* no long-task timing */ }
-})()`;
+})`;
 
 function option(name: string, fallback?: string): string {
   const found = process.argv.find((arg) => arg.startsWith(`--${name}=`));
@@ -124,7 +131,7 @@ const { server, base } = await servePreview(ROOT, dist);
 const browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
 try {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
-  await context.addInitScript(WRAP);
+  await context.addInitScript(`${WRAP}(${process.argv.includes('--stacks')})`);
   const page = await context.newPage();
   const query = backend === 'cpu' ? '?backend=cpu' : '';
   await page.goto(`${base}/embed/${widget}.html${query}`);
@@ -167,9 +174,11 @@ try {
     const t0 = performance.now();
     control.value = String(next);
     control.dispatchEvent(new Event('input', { bubbles: true }));
+    // The stage of the first picture, read when it comes (later frames replace it).
+    let stage = null;
     await new Promise((resolve) => {
       const observer = new MutationObserver(() => {
-        if (count() > before) { observer.disconnect(); resolve(); }
+        if (count() > before) { stage = el.dataset.stage ?? null; observer.disconnect(); resolve(); }
       });
       observer.observe(el, { attributes: true });
     });
@@ -182,7 +191,7 @@ try {
     const log = window.__probe.filter(
       (e) => (e.end === null || e.end >= t0 - 3000) && e.start <= t1);
     return { control: control.name, value: next, t0, firstMs: t1 - t0, frameMs: t2 - t0,
-      stage: el.dataset.stage ?? null, log };
+      stage, log };
   }`;
   const result = (await page.evaluate(`(${INPUT})(${JSON.stringify({ tag, next })})`)) as {
     control: string;
