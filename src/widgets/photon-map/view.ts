@@ -42,6 +42,8 @@ const VIEW_PHOTONS = 16384;
 const PT_PASS_SPP = 4;
 /** GPU time one path-tracing pass of a frame may take (ms): an input waits for the pass in flight. */
 const PT_PASS_BUDGET_MS = 20;
+/** Path-tracing passes submitted before the first of them is read back. */
+const PT_PASSES_IN_FLIGHT = 2;
 /** The photon-map image's jittered rays per pixel. */
 const GATHER_SAMPLES = 1;
 /** Paths per pixel the CPU path tracer stops at even if it has time left. */
@@ -59,6 +61,9 @@ const SWEEP_PHOTONS = 4096;
  * the full time on SwiftShader), hence the half resolution of the first rung.
  */
 const RUNGS = [
+  // The smallest rung for a slow machine: the preview of 1/16 (with path tracing in the
+  // same time) took 95–110 ms on SwiftShader, just past the first-picture budget.
+  { fraction: 1 / 64, pixelScale: 2, work: 0.04, label: '1/64 of the photons, half resolution' },
   { fraction: 1 / 16, pixelScale: 2, work: 0.1, label: '1/16 of the photons, half resolution' },
   { fraction: 1 / 4, pixelScale: 1, work: 0.4, label: '¼ of the photons' },
   { fraction: 1, pixelScale: 1, work: 1, label: 'all photons' },
@@ -136,40 +141,81 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
         ...(signal ? { signal } : {}),
       });
       const sum = new Float64Array(width * height);
+      const pixels = width * height;
       let ptMs = 0;
       let spp = 0;
-      for (let pass = 0; ; pass++) {
-        // An input stops the path tracer between passes: the next picture would otherwise
-        // queue behind every pass still to come on the GPU (issue 23).
-        if (signal?.aborted) throw abortError('the rest of this frame');
-        // Equal time: passes of PT_PASS_SPP, or, once a pass has been timed, as many
-        // PT_PASS_SPP as fit the time still to match, at most PT_PASS_BUDGET_MS of it (each
-        // pass is a read-back: 4 spp at a time cost a preview 5 of them).
-        const passSpp =
-          ptSppTarget === undefined && ptMsPerSample !== null
-            ? PT_PASS_SPP *
-              Math.max(
-                1,
-                Math.floor(
-                  Math.min(pm.milliseconds - ptMs, PT_PASS_BUDGET_MS) /
-                    (PT_PASS_SPP * ptMsPerSample * width * height),
-                ),
-              )
-            : PT_PASS_SPP;
-        const r = await pathTraceGpu(
-          device,
-          linked,
-          inputs,
-          width,
-          height,
-          passSpp,
-          inputs.seed + 7919 * pass,
-        );
+      // Passes in flight and what they are expected to add (ms from the last pass's cost).
+      const inFlight: Promise<{ sum: Float32Array; milliseconds: number; spp: number }>[] = [];
+      let plannedMs = 0;
+      let plannedSpp = 0;
+      let pass = 0;
+      const enough = (extraMs: number, extraSpp: number): boolean =>
+        ptSppTarget !== undefined
+          ? spp + extraSpp >= ptSppTarget
+          : ptMs + extraMs >= pm.milliseconds;
+      for (;;) {
+        // Up to PT_PASSES_IN_FLIGHT passes are submitted before the first is read back (a
+        // read-back is a round trip of 10–20 ms in Chrome on SwiftShader), once a pass has
+        // been timed; while more are still needed to match the photon map's time.
+        while (
+          inFlight.length < (ptMsPerSample === null ? 1 : PT_PASSES_IN_FLIGHT) &&
+          !(inFlight.length > 0 && enough(plannedMs, plannedSpp))
+        ) {
+          // An input stops the path tracer between passes: the next picture would otherwise
+          // queue behind every pass still to come on the GPU (issue 23).
+          if (signal?.aborted) {
+            await Promise.allSettled(inFlight);
+            throw abortError('the rest of this frame');
+          }
+          // Equal time: passes of PT_PASS_SPP, or, once a pass has been timed, as many
+          // PT_PASS_SPP as fit the time still to match, at most PT_PASS_BUDGET_MS of it (each
+          // pass is a read-back: 4 spp at a time cost a preview 5 of them).
+          const perSample = ptMsPerSample;
+          // The last pass takes what is left (rounded up to whole PT_PASS_SPP: equal time
+          // at least), earlier ones PT_PASS_BUDGET_MS each (rounded down).
+          const remainingMs = pm.milliseconds - ptMs - plannedMs;
+          const unitMs = perSample === null ? 0 : PT_PASS_SPP * perSample * pixels;
+          const units =
+            unitMs <= 0
+              ? 1
+              : remainingMs <= PT_PASS_BUDGET_MS
+                ? Math.ceil(remainingMs / unitMs)
+                : Math.floor(PT_PASS_BUDGET_MS / unitMs);
+          const passSpp =
+            ptSppTarget === undefined && perSample !== null
+              ? PT_PASS_SPP * Math.max(1, units)
+              : PT_PASS_SPP;
+          const expectedMs = perSample === null ? 0 : passSpp * perSample * pixels;
+          plannedMs += expectedMs;
+          plannedSpp += passSpp;
+          inFlight.push(
+            pathTraceGpu(
+              device,
+              linked,
+              inputs,
+              width,
+              height,
+              passSpp,
+              inputs.seed + 7919 * pass,
+            ).then((r) => {
+              plannedMs -= expectedMs;
+              plannedSpp -= passSpp;
+              return { ...r, spp: passSpp };
+            }),
+          );
+          pass += 1;
+        }
+        if (inFlight.length === 0) break;
+        const r = await inFlight.shift()!.catch(async (error: unknown) => {
+          // The passes still in flight are waited for: their buffers go back to the pool.
+          await Promise.allSettled(inFlight);
+          throw error;
+        });
         for (let i = 0; i < sum.length; i++) sum[i]! += r.sum[i]!;
         ptMs += r.milliseconds;
-        spp += passSpp;
-        ptMsPerSample = r.milliseconds / (passSpp * width * height);
-        if (ptSppTarget !== undefined ? spp >= ptSppTarget : ptMs >= pm.milliseconds) break;
+        spp += r.spp;
+        ptMsPerSample = r.milliseconds / (r.spp * pixels);
+        if (inFlight.length === 0 && enough(0, 0)) break;
       }
       return {
         width,
