@@ -47,12 +47,21 @@ type Pass = (
   frame: number,
 ) => Promise<{ sums: ArrayLike<number>; milliseconds: number }>;
 
+/** GPU time one estimator pass may take (ms): an input waits for the pass in flight. */
+const ESTIMATOR_PASS_MS = 20;
+
 interface State {
   key: string;
   size: number;
   estimators: Record<EstimatorName, Accumulation>;
   reference: Accumulation;
   pass: number;
+  /** The next estimator pass's stream (shared by the three estimators: the same frame). */
+  nextStream: number;
+  /** GPU ms per sample per pixel of the costliest estimator's last pass (null: none yet). */
+  msPerSpp: number | null;
+  /** Passes of the reference so far: each has its own stream (REFERENCE_FRAME_OFFSET on). */
+  referencePasses: number;
   /** Each estimator's error against the reference after each pass (the plot's points). */
   errors: Record<EstimatorName, SweepPoint[]>;
 }
@@ -149,6 +158,9 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
       },
       reference: emptyAccumulation(size),
       pass: 0,
+      nextStream: 0,
+      msPerSpp: null,
+      referencePasses: 0,
       errors: { oneChannel: [], hero: [], spectral: [] },
     };
   }
@@ -172,24 +184,49 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
       ? 1
       : Math.min(inputs.spp, Math.max(inputs.target - s.estimators.hero.samples, 1));
     let frameMilliseconds = 0;
+    // Each estimator's samples in passes of about ESTIMATOR_PASS_MS (the spectral one took
+    // 49 ms for 4 spp on SwiftShader, and an input's picture waited for the pass in flight),
+    // the sub-passes' streams shared by the three estimators as one pass's were.
+    const chunk =
+      s.msPerSpp === null
+        ? spp
+        : Math.max(1, Math.min(spp, Math.floor(ESTIMATOR_PASS_MS / s.msPerSpp)));
+    let msPerSpp = 0;
     for (const name of ESTIMATORS) {
-      const pass = await run(inputs, ESTIMATOR_INDEX[name], size, spp, s.pass);
-      // New inputs meanwhile: the rest of this frame is stale (the next frame draws theirs).
-      if (request.signal.aborted) return null;
-      accumulate(s.estimators[name], pass.sums, spp, pass.milliseconds);
-      frameMilliseconds += pass.milliseconds;
+      for (let done = 0, part = 0; done < spp; part++) {
+        const samples = Math.min(chunk, spp - done);
+        const pass = await run(inputs, ESTIMATOR_INDEX[name], size, samples, s.nextStream + part);
+        // New inputs meanwhile: the rest of this frame is stale (the next frame draws theirs).
+        if (request.signal.aborted) return null;
+        accumulate(s.estimators[name], pass.sums, samples, pass.milliseconds);
+        frameMilliseconds += pass.milliseconds;
+        msPerSpp = Math.max(msPerSpp, pass.milliseconds / samples);
+        done += samples;
+      }
     }
-    // The reference: one channel at a time, REFERENCE_FACTOR× the samples, its own streams.
-    const reference = await run(
-      inputs,
-      ESTIMATOR_INDEX.oneChannel,
-      size,
-      REFERENCE_FACTOR * spp,
-      REFERENCE_FRAME_OFFSET + s.pass,
-    );
-    if (request.signal.aborted) return null;
-    accumulate(s.reference, reference.sums, REFERENCE_FACTOR * spp, reference.milliseconds);
-    frameMilliseconds += reference.milliseconds;
+    s.nextStream += Math.ceil(spp / chunk);
+    if (msPerSpp > 0) s.msPerSpp = msPerSpp;
+    // The reference: one channel at a time, REFERENCE_FACTOR× the estimators' samples, its
+    // own streams, in passes of `spp` samples with an input checked between them (one pass
+    // of REFERENCE_FACTOR × spp took 60 ms on SwiftShader, and an input's picture waited
+    // for it). The preview's reference has as many samples as its estimators, not
+    // REFERENCE_FACTOR× (its 4 spp cost the first picture 29 ms); the next frame makes up
+    // the difference, so every point of the error plot (from 2 samples on) has the ratio.
+    const referenceTarget = (preview ? 1 : REFERENCE_FACTOR) * s.estimators.hero.samples;
+    while (s.reference.samples < referenceTarget) {
+      const samples = Math.min(spp, referenceTarget - s.reference.samples);
+      const reference = await run(
+        inputs,
+        ESTIMATOR_INDEX.oneChannel,
+        size,
+        samples,
+        REFERENCE_FRAME_OFFSET + s.referencePasses,
+      );
+      if (request.signal.aborted) return null;
+      s.referencePasses++;
+      accumulate(s.reference, reference.sums, samples, reference.milliseconds);
+      frameMilliseconds += reference.milliseconds;
+    }
     s.pass++;
     const referenceMeans = means(s.reference);
     const stats = {} as Record<EstimatorName, EstimatorStats>;
