@@ -20,6 +20,13 @@ export interface BandOptions {
   msPerRow?: number | null;
   /** Rows per band instead of the budget (a test's fixed cut). */
   fixedRows?: number;
+  /**
+   * Predicted GPU ms of each row (indexed by row, e.g. the `rowMs` of the same kernel's
+   * last call): bands are then cut where the predicted time reaches the budget, so rows that
+   * cost several times the mean (a sphere across the middle of the image) get bands of their
+   * own instead of joining a band sized by the cheap rows above them.
+   */
+  rowMs?: ArrayLike<number> | null;
   /** An input: no band is submitted once it is aborted, and the call rejects. */
   signal?: AbortSignal;
 }
@@ -34,12 +41,33 @@ export function abortError(what: string): DOMException {
   return new DOMException(`${what} is no longer needed`, 'AbortError');
 }
 
-/** Rows of the next band at `msPerRow` (null: not timed yet); a last sliver joins it. */
-export function bandRows(remaining: number, msPerRow: number | null, options: BandOptions): number {
-  const rows =
-    options.fixedRows !== undefined
-      ? Math.max(1, Math.floor(options.fixedRows))
-      : msPerRow === null
+/**
+ * Rows of the next band at `msPerRow` (null: not timed yet), or by the predicted time of
+ * each row from `start` on where `options.rowMs` gives it; a last sliver joins it.
+ */
+export function bandRows(
+  remaining: number,
+  msPerRow: number | null,
+  options: BandOptions,
+  start = 0,
+): number {
+  const predicted = options.rowMs;
+  let rows: number;
+  if (options.fixedRows !== undefined) rows = Math.max(1, Math.floor(options.fixedRows));
+  else if (predicted && predicted.length >= start + remaining) {
+    let sum = 0;
+    rows = 0;
+    while (rows < remaining && (rows === 0 || sum + predicted[start + rows]! <= options.budgetMs)) {
+      sum += predicted[start + rows]!;
+      rows += 1;
+    }
+    // What is left predicted at under half a band joins this one.
+    let rest = 0;
+    for (let row = start + rows; row < start + remaining; row++) rest += predicted[row]!;
+    return rest < options.budgetMs / 2 && sum + rest <= 1.5 * options.budgetMs ? remaining : rows;
+  } else
+    rows =
+      msPerRow === null
         ? options.firstRows
         : Math.max(1, Math.floor(options.budgetMs / Math.max(msPerRow, 1e-6)));
   // Less than half a band would be left: take it now rather than pay a read-back for it.
@@ -58,7 +86,7 @@ export async function runInBands<T extends { milliseconds: number }>(
   rowEnd: number,
   options: BandOptions,
   run: (band: Band) => Promise<T>,
-): Promise<{ bands: (T & Band)[]; msPerRow: number | null }> {
+): Promise<{ bands: (T & Band)[]; msPerRow: number | null; rowMs: Float64Array }> {
   let msPerRow = options.msPerRow ?? null;
   const inFlight: Promise<T & Band>[] = [];
   const bands: (T & Band)[] = [];
@@ -75,7 +103,10 @@ export async function runInBands<T extends { milliseconds: number }>(
           await Promise.allSettled(inFlight);
           throw abortError('the rest of this picture');
         }
-        const band: Band = { start: next, rows: bandRows(rowEnd - next, msPerRow, options) };
+        const band: Band = {
+          start: next,
+          rows: bandRows(rowEnd - next, msPerRow, options, next),
+        };
         inFlight.push(run(band).then((result) => ({ ...result, ...band })));
         next += band.rows;
       } else {
@@ -87,5 +118,10 @@ export async function runInBands<T extends { milliseconds: number }>(
     for (const band of inFlight) band.catch(() => undefined);
     throw error;
   }
-  return { bands, msPerRow };
+  // The measured time of each row (its band's time shared evenly), for the next call.
+  const rowMs = new Float64Array(rowEnd);
+  for (const band of bands)
+    for (let row = band.start; row < band.start + band.rows; row++)
+      rowMs[row] = band.milliseconds / band.rows;
+  return { bands, msPerRow, rowMs };
 }

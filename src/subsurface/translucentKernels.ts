@@ -48,6 +48,8 @@ export class TranslucentKernels {
   private packed: { nodes: Uint32Array; samples: Uint32Array } | null = null;
   /** GPU ms per image row and sample of the last path batch (null: none yet). */
   private pathMsPerRowSample: number | null = null;
+  /** The same per row (each row's GPU ms per sample): bands cut by the rows' own costs. */
+  private pathRowMsPerSample: Float64Array | null = null;
 
   constructor(
     private readonly device: GPUDevice,
@@ -168,7 +170,8 @@ export class TranslucentKernels {
     const size = scene.size;
     const { samples } = options;
     const known = this.pathMsPerRowSample;
-    const { bands } = await runInBands(
+    const perRow = this.pathRowMsPerSample;
+    const { bands, rowMs } = await runInBands(
       0,
       size,
       {
@@ -176,6 +179,7 @@ export class TranslucentKernels {
         firstRows: PATH_FIRST_BAND_ROWS,
         inFlight: GATHER_BANDS_IN_FLIGHT,
         msPerRow: known === null ? null : known * samples,
+        rowMs: perRow && perRow.length === size ? perRow.map((ms) => ms * samples) : null,
         ...(options.signal ? { signal: options.signal } : {}),
       },
       async ({ start, rows }) => {
@@ -200,7 +204,10 @@ export class TranslucentKernels {
     // The mean over the image, not the last band's (the rows below the sphere cost nearly
     // nothing, and a next batch sized by them went in one band of 35 ms).
     const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);
-    if (milliseconds > 0 && samples > 0) this.pathMsPerRowSample = milliseconds / size / samples;
+    if (milliseconds > 0 && samples > 0) {
+      this.pathMsPerRowSample = milliseconds / size / samples;
+      this.pathRowMsPerSample = rowMs.map((ms) => ms / samples);
+    }
     const sums = new Float32Array(7 * size * size);
     for (const { start, rows, result } of bands)
       sums.set(floats(result.output).subarray(0, 7 * rows * size), 7 * start * size);

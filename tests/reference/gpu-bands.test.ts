@@ -52,6 +52,42 @@ describe('bands of rows', () => {
     expect(state.submitted[0]!.rows).toBe(10);
   });
 
+  it('with the rows’ own predicted times, expensive rows get bands of their own, and each call measures them', async () => {
+    // 40 rows: cheap (0.5 ms) except rows 10–19 (4 ms each), as a sphere across an image.
+    const cost = Float64Array.from({ length: 40 }, (_, row) => (row >= 10 && row < 20 ? 4 : 0.5));
+    const submitted: Band[] = [];
+    const run = async (band: Band) => {
+      submitted.push(band);
+      let ms = 0;
+      for (let row = band.start; row < band.start + band.rows; row++) ms += cost[row]!;
+      return { milliseconds: ms };
+    };
+    const first = await runInBands(0, 40, { ...OPTIONS, inFlight: 1, msPerRow: 1 }, run);
+    // The measured time of each row is its band's time shared evenly: their sum is the total.
+    const total = cost.reduce((a, b) => a + b, 0);
+    expect(first.rowMs.reduce((a, b) => a + b, 0)).toBeCloseTo(total, 9);
+    submitted.length = 0;
+    await runInBands(0, 40, { ...OPTIONS, inFlight: 1, rowMs: cost }, run);
+    // No band predicted (and, here, measured) over the budget but a single row's, or one
+    // that took in a rest of under half a budget (at most 1.5 budgets).
+    for (const band of submitted) {
+      let ms = 0;
+      for (let row = band.start; row < band.start + band.rows; row++) ms += cost[row]!;
+      expect(ms <= 1.5 * OPTIONS.budgetMs || band.rows === 1, `${band.start}+${band.rows}`).toBe(
+        true,
+      );
+    }
+    // The expensive rows are cut where they start: none of rows 10–19 shares a band with
+    // more than one cheap row before it.
+    for (const band of submitted) {
+      const expensive = [...Array(band.rows).keys()].filter((k) => cost[band.start + k]! > 1);
+      if (expensive.length > 0) expect(expensive.length).toBeLessThanOrEqual(2);
+    }
+    expect(bandRows(30, null, { ...OPTIONS, rowMs: cost }, 10)).toBe(2); // 4 + 4 ms ≤ 10
+    expect(bandRows(20, null, { ...OPTIONS, rowMs: cost }, 20)).toBe(20); // 20 × 0.5 = 10 ms
+    expect(bandRows(4, null, { ...OPTIONS, rowMs: cost }, 36)).toBe(4); // a 2-ms rest joins
+  });
+
   it('an aborted signal submits nothing more and rejects once the bands in flight are back', async () => {
     const { state, run } = fakeGpu(1);
     const controller = new AbortController();
