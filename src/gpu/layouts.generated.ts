@@ -401,6 +401,7 @@ const RoomParams = /* @__PURE__ */ struct('RoomParams', 80, 16, {
   samples: [64, u32],
   maxBounces: [68, u32],
   surfaceBounces: [72, u32],
+  rowStart: [76, u32],
 });
 const VreRayParams = /* @__PURE__ */ struct('VreRayParams', 48, 4, {
   sigma: [0, f32],

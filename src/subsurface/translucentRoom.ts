@@ -85,7 +85,13 @@ export const ROOM_PARAMS = translucentRoomPathKernel.RoomParams;
 
 export function packRoomParams(
   scene: RoomScene,
-  extra: { count?: number; seed?: number; offset?: number; samples?: number } = {},
+  extra: {
+    count?: number;
+    seed?: number;
+    offset?: number;
+    samples?: number;
+    rowStart?: number;
+  } = {},
 ): Uint32Array<ArrayBuffer> {
   return packStruct(ROOM_PARAMS, {
     size: scene.size,
@@ -101,6 +107,7 @@ export function packRoomParams(
     samples: extra.samples ?? 0,
     maxBounces: WALK_CAP,
     surfaceBounces: SURFACE_CAP,
+    rowStart: extra.rowStart ?? 0,
   });
 }
 

@@ -56,6 +56,51 @@ describe('translucent-room kernels vs their twins', () => {
     expect(capped).toBe(0);
   });
 
+  it('both image kernels in bands of rows: the same sums whatever the cut, and an input stops them', async () => {
+    const device = await nodeDevice();
+    const scene = roomScene(skin, 2, 0, 16);
+    const options = { samples: 2, offset: 0, seed: 9 };
+    const irradiance = (
+      await new RoomKernels(device, SHADER_LIBRARY).irradiance(
+        scene,
+        64,
+        16,
+        5,
+        new Float32Array(0),
+      )
+    ).samples;
+    const batches = (kernels: RoomKernels) => [
+      () => kernels.pathBatch(scene, options),
+      () => kernels.dipoleBatch(scene, irradiance, options),
+    ];
+    // A fresh instance starts with bands of 2 rows and then sizes them by the budget; the
+    // second call is cut by the time per row measured; a third instance in single rows.
+    const fresh = new RoomKernels(device, SHADER_LIBRARY);
+    const rows = new RoomKernels(device, SHADER_LIBRARY);
+    const slow = (rows as unknown as { msPerRowSample: Map<string, number> }).msPerRowSample;
+    slow.set('path', 1e6);
+    slow.set(`dipole:${irradiance.length / SAMPLE_FLOATS}`, 1e6);
+    for (const [k, run] of batches(fresh).entries()) {
+      const first = Array.from((await run()).sums);
+      expect(Array.from((await run()).sums)).toEqual(first);
+      expect(Array.from((await batches(rows)[k]!()).sums)).toEqual(first);
+      // Every row was traced: a band that ignored its first row leaves the lower rows empty.
+      for (let row = 0; row < 16; row++) {
+        let light = 0;
+        for (let i = 0; i < 16; i++) light += first[7 * (row * 16 + i)]!;
+        expect(light, `row ${row}`).toBeGreaterThan(0);
+      }
+    }
+    const controller = new AbortController();
+    controller.abort();
+    await expect(
+      fresh.pathBatch(scene, { ...options, signal: controller.signal }),
+    ).rejects.toMatchObject({ name: 'AbortError' });
+    await expect(
+      fresh.dipoleBatch(scene, irradiance, { ...options, signal: controller.signal }),
+    ).rejects.toMatchObject({ name: 'AbortError' });
+  });
+
   it('irradiance samples and the dipole picture agree; black walls leave only direct light', async () => {
     const kernels = new RoomKernels(await nodeDevice(), SHADER_LIBRARY);
     const scene = roomScene(skin, 2, 0, 8);

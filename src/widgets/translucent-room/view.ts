@@ -155,10 +155,13 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
       const acc = job[which];
       const samples = Math.min(perStep[which], job.target - acc.samples);
       if (samples <= 0) return;
+      // In bands of rows (RoomKernels): an input stops the step between two, and the
+      // input's frame starts the accumulation again from the same offset.
       const options = {
         samples,
         offset: acc.samples,
         seed: which === 'reference' ? job.seed : job.seed + 1,
+        signal: context.inputSignal,
       };
       const batch: PathBatch =
         which === 'reference'
@@ -186,6 +189,8 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
       }
       if (status) status.textContent = `Done: ${job.target} samples per pixel in each picture.`;
     } catch (error) {
+      // An input stopped the step: its frame calls accumulate again.
+      if (error instanceof DOMException && error.name === 'AbortError') return;
       if (status)
         status.textContent = `Accumulation failed: ${error instanceof Error ? error.message : String(error)}`;
     } finally {
@@ -270,14 +275,19 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
           seed,
           preview: true,
         };
-        next.reference.add(await renderer.pathBatch(scene, { samples: 1, offset: 0, seed }));
-        next.dipole.add(
-          await renderer.dipoleBatch(scene, first.samples, {
+        // Both pictures side by side, each in one dispatch: bands would add a read-back
+        // each to the first picture, which an input does not need to stop.
+        const [reference, dipole] = await Promise.all([
+          renderer.pathBatch(scene, { samples: 1, offset: 0, seed, whole: true }),
+          renderer.dipoleBatch(scene, first.samples, {
             samples: 1,
             offset: 0,
             seed: seed + 1,
+            whole: true,
           }),
-        );
+        ]);
+        next.reference.add(reference);
+        next.dipole.add(dipole);
         if (request.signal.aborted) return null;
         pictures = next;
         show();
@@ -302,6 +312,7 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
             samples: 1,
             offset: 0,
             seed: p.seed + 1,
+            signal: request.signal,
           }),
         );
         if (request.signal.aborted || pictures !== p) return null;
