@@ -117,7 +117,7 @@ const InverseParams = /* @__PURE__ */ struct('InverseParams', 64, 16, {
   learningRate: [48, f32],
   regularizerWeight: [52, f32],
   seed: [56, u32],
-  pad0: [60, u32],
+  targetSteps: [60, u32],
 });
 const Camera = /* @__PURE__ */ struct('Camera', 80, 16, {
   position: [0, vec3f],

@@ -43,6 +43,8 @@ export const NOVEL_ELEVATION = 0.75;
 export const FIRST_AZIMUTH = 0.35;
 /** Midpoint samples per ray of the target images (a converged render of the hidden volume). */
 export const TARGET_STEPS = 192;
+/** Samples per ray of the targets' preview (the first picture of a new problem on the GPU). */
+export const PREVIEW_TARGET_STEPS = 48;
 /** Background radiance behind the box, per channel. */
 export const BACKGROUND: Vec3 = [0.26, 0.28, 0.34];
 /** Initial raw density: σt = 10·softplus(−5) = 0.067 m⁻¹, an almost empty box (τ ≈ 0.13 across). */
@@ -220,6 +222,11 @@ export interface Trainer {
   readonly problem: Problem;
   /** Target images of every view, 3 numbers per pixel. */
   readTargets(): Promise<ArrayLike<number>>;
+  /**
+   * A cheaper rendering of the targets (fewer samples per ray) made before the exact ones,
+   * once; null when the trainer made none (issue 23: the first picture of a new problem).
+   */
+  readPreviewTargets?(): Promise<ArrayLike<number> | null>;
   /** Runs up to `count` more iterations (never past MAX_ITERATIONS). */
   train(count: number, hyper: Hyper): Promise<TrainReport>;
   /** The current grid rendered from every view. */

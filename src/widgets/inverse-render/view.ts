@@ -22,6 +22,8 @@ import {
   CPU_MAX_RESOLUTION,
   CPU_MAX_TABLE_LOG2,
   NOVEL_ELEVATION,
+  PREVIEW_TARGET_STEPS,
+  TARGET_STEPS,
   effectiveBatch,
   hyperFrom,
   problemFrom,
@@ -340,7 +342,6 @@ export function createView(
     }
     trainer = created;
     const problem = created.problem;
-    targets = await created.readTargets();
     losses = [];
     times = [];
     runs.set(problem.model, { key: comparisonKey(problem), times, losses, novel: [] });
@@ -352,34 +353,46 @@ export function createView(
     spent = 0;
     rateSamples = [];
     novelAzimuth = problem.views[problem.views.length - 1]!.azimuth;
-    buildViewCells(problem);
-    for (const [view, canvases] of viewCanvases.entries())
-      paintView(canvases.target, targets, view, problem.size);
-    if (novelTarget) paintView(novelTarget, targets, problem.trainViews, problem.size);
     lastBatch = null;
-    // Issue 23: the targets are a picture of the new problem already; show them with the
-    // stage line saying that set-up goes on, instead of nothing until the first render of
-    // the fit (seconds of pipeline builds on a CPU WebGPU). The render's own frame follows.
     trainMse = NaN;
     initialTrainMse = NaN;
-    cost = {
-      milliseconds: performance.now() - started,
-      timing: frameBackend.kind === 'cpu' ? 'cpu' : 'gpu-wall',
+    /** Draws `images` as the targets and reports a frame of the set-up saying what it is. */
+    let cellsBuilt = false;
+    const showTargets = (images: ArrayLike<number>, status: string, label: string): void => {
+      if (!cellsBuilt) buildViewCells(problem);
+      cellsBuilt = true;
+      for (const [view, canvases] of viewCanvases.entries())
+        paintView(canvases.target, images, view, problem.size);
+      if (novelTarget) paintView(novelTarget, images, problem.trainViews, problem.size);
+      cost = {
+        milliseconds: performance.now() - started,
+        timing: frameBackend.kind === 'cpu' ? 'cpu' : 'gpu-wall',
+      };
+      const shown = frame();
+      if (!shown) return;
+      setStatus(status);
+      context.report({ ...shown, refinement: { label, pending: 'job' } }, frameBackend);
     };
-    const preview = frame();
-    if (preview) {
-      setStatus('Setting up: the target views are drawn; rendering the initial fit…');
-      context.report(
-        {
-          ...preview,
-          refinement: {
-            label: 'Setting up: target views drawn; the first render of the fit follows',
-            pending: 'job',
-          },
-        },
-        frameBackend,
+    // Issue 23: a preview of the targets (fewer samples per ray, GPU only) comes back while
+    // the GPU renders the exact ones, and is drawn at once.
+    const early = created.readPreviewTargets ? await created.readPreviewTargets() : null;
+    if (setup !== setupToken || context.signal.aborted) return;
+    if (early)
+      showTargets(
+        early,
+        'Preparing the target images: a preview is drawn…',
+        `Preview: target views with ${PREVIEW_TARGET_STEPS} of ${TARGET_STEPS} samples per ray; the exact targets follow`,
       );
-    }
+    targets = await created.readTargets();
+    if (setup !== setupToken || context.signal.aborted) return;
+    // The exact targets are a picture of the new problem already; show them with the stage
+    // line saying that set-up goes on, instead of nothing until the first render of the fit
+    // (seconds of pipeline builds on a CPU WebGPU). The render's own frame follows.
+    showTargets(
+      targets,
+      'Setting up: the target views are drawn; rendering the initial fit…',
+      'Setting up: target views drawn; the first render of the fit follows',
+    );
     await drawFit();
     if (setup !== setupToken || context.signal.aborted) return;
     setupMs = performance.now() - started;
@@ -679,7 +692,9 @@ export function createView(
       return sync('gpu', async (problem) => {
         const gridCode = await linkLibraryKernel(STATIC_KERNELS, KERNEL);
         if (problem.model !== 'neural')
-          return InverseTrainerGpu.create(gpu.device, gridCode, problem);
+          return InverseTrainerGpu.create(gpu.device, gridCode, problem, {
+            previewSteps: PREVIEW_TARGET_STEPS,
+          });
         // The neural field's targets come from the grid's kernel: the same images.
         const code = await linkLibraryKernel(STATIC_KERNELS, NEURAL_KERNEL);
         return NeuralTrainerGpu.create(gpu.device, code, gridCode, problem);
