@@ -53,7 +53,8 @@ test('both pictures accumulate with times and the dipole error; black walls leav
   // The input's first picture is the preview (a smaller pass 1), then pass 1 at full size.
   await expect.poll(() => widget.getAttribute('data-stage')).toBe('full');
   const stages = await stagesShown();
-  expect(stages[0]).toMatch(/^Preview: pass 1 with 256 × 16, 1 sample per pixel$/);
+  // At half the side (a 16² picture previews at 8²).
+  expect(stages[0]).toMatch(/^Preview: pass 1 with 256 × 16, 1 sample per pixel at 8² pixels$/);
   expect(stages.at(-1)).toBe('full');
   await expect(widget.locator('.sb-cost')).toContainText('1024 irradiance samples × 64 rays');
   await expect.poll(() => page.url()).toContain('walls=black');

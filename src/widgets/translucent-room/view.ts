@@ -258,7 +258,10 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
         // The first picture after an input: pass 1 at preview size, one sample per pixel
         // of each picture (issue 23's first-picture budget); the next frame refines it.
         cancel('restarted');
-        const scene = sceneFromValues(context.values);
+        // At half the side: one sample per pixel of the path-traced picture at full size
+        // took 84 ms of GPU time on SwiftShader, past the first-picture budget by itself.
+        const full = sceneFromValues(context.values);
+        const scene = { ...full, size: Math.max(8, Math.round(full.size / 2)) };
         const seed = Number(context.values['seed']);
         const first = await passOne(scene, seed, IRRADIANCE_PREVIEW);
         if (request.signal.aborted) return null;
@@ -294,7 +297,7 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
         return {
           ...frameOf(next, next.timing as GpuTiming, IRRADIANCE_PREVIEW),
           stage: {
-            label: `Preview: pass 1 with ${IRRADIANCE_PREVIEW.samples} × ${IRRADIANCE_PREVIEW.rays}, 1 sample per pixel`,
+            label: `Preview: pass 1 with ${IRRADIANCE_PREVIEW.samples} × ${IRRADIANCE_PREVIEW.rays}, 1 sample per pixel at ${scene.size}² pixels`,
             pending: 'frame',
           },
         };
@@ -304,18 +307,34 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
       if (p.preview) {
         // The full pass 1; the dipole picture starts again on it (the path-traced one does
         // not depend on it and goes on). The preview's dipole stays on screen meanwhile.
-        const full = await passOne(p.scene, p.seed, IRRADIANCE.gpu);
+        // Both pictures at full size from here: the preview's were at half the side.
+        const scene = sceneFromValues(context.values);
+        const pixels = scene.size * scene.size;
+        const full = await passOne(scene, p.seed, IRRADIANCE.gpu);
         if (request.signal.aborted || pictures !== p) return null;
-        const dipole = new PathAccumulator(p.scene.size * p.scene.size);
-        dipole.add(
-          await renderer.dipoleBatch(p.scene, full.samples, {
+        const dipole = new PathAccumulator(pixels);
+        const reference = p.scene.size === scene.size ? p.reference : new PathAccumulator(pixels);
+        const [dipoleBatch, referenceBatch] = await Promise.all([
+          renderer.dipoleBatch(scene, full.samples, {
             samples: 1,
             offset: 0,
             seed: p.seed + 1,
             signal: request.signal,
           }),
-        );
+          reference.samples === 0
+            ? renderer.pathBatch(scene, {
+                samples: 1,
+                offset: 0,
+                seed: p.seed,
+                signal: request.signal,
+              })
+            : null,
+        ]);
         if (request.signal.aborted || pictures !== p) return null;
+        dipole.add(dipoleBatch);
+        if (referenceBatch) reference.add(referenceBatch);
+        p.scene = scene;
+        p.reference = reference;
         p.samples = full.samples;
         p.irradianceMs = full.milliseconds;
         p.timing = full.timing;
