@@ -35,6 +35,11 @@ export interface FrameRenderer {
     signal?: AbortSignal,
     /** March again even where the same rows were marched before (a timing, not a picture). */
     fresh?: boolean,
+    /**
+     * GPU bands in flight at once (default GPU_BANDS_IN_FLIGHT): 1 for work beside the
+     * frames (the reference), so that an input's picture waits for one band of it at most.
+     */
+    inFlight?: number,
   ): Promise<RowsCost>;
 }
 
@@ -162,8 +167,12 @@ const GPU_FIRST_BAND_ROWS = 8;
 export class GpuRenderer implements FrameRenderer {
   readonly kind = 'gpu';
   readonly size = IMAGE_SIZE;
-  /** Measured GPU ms per ray and voxel of path (rays × 1/Δs), or null before the first band. */
-  private msPerRayVoxel: number | null = null;
+  /**
+   * Measured GPU ms per ray and voxel of path (rays × 1/Δs), by termination threshold (the
+   * reference's smaller one marches further per ray: sized by the frames' cost, one of its
+   * bands ran 164 ms), absent before the first band.
+   */
+  private readonly msPerRayVoxel = new Map<number, number>();
 
   constructor(private readonly gpu: VolumeRendererGpu) {}
 
@@ -183,17 +192,24 @@ export class GpuRenderer implements FrameRenderer {
     rowStart: number,
     rowEnd: number,
     signal?: AbortSignal,
+    _fresh = false,
+    inFlight = GPU_BANDS_IN_FLIGHT,
   ): Promise<RowsCost> {
     const { size } = image;
     const step = Math.max(stepVoxels, 1e-3);
+    // A threshold not timed yet (the reference's first band) is sized from twice the
+    // costliest one timed: 8 rows of the reference untimed took 90 ms on SwiftShader.
+    const timed = [...this.msPerRayVoxel.values()];
+    const known =
+      this.msPerRayVoxel.get(threshold) ?? (timed.length > 0 ? 2 * Math.max(...timed) : undefined);
     const { bands, msPerRow } = await runInBands(
       rowStart,
       Math.min(rowEnd, size),
       {
         budgetMs: GPU_BAND_BUDGET_MS,
         firstRows: GPU_FIRST_BAND_ROWS,
-        inFlight: GPU_BANDS_IN_FLIGHT,
-        msPerRow: this.msPerRayVoxel === null ? null : (this.msPerRayVoxel * size) / step,
+        inFlight,
+        msPerRow: known === undefined ? null : (known * size) / step,
         ...(signal ? { signal } : {}),
       },
       (band) =>
@@ -206,7 +222,7 @@ export class GpuRenderer implements FrameRenderer {
           rowEnd: band.start + band.rows,
         }),
     );
-    if (msPerRow !== null) this.msPerRayVoxel = (msPerRow * step) / size;
+    if (msPerRow !== null) this.msPerRayVoxel.set(threshold, (msPerRow * step) / size);
     if (signal?.aborted) throw abortError('the rest of this picture');
     for (const band of bands) addBand(image, band, band.start);
     const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);

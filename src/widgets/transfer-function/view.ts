@@ -380,6 +380,10 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
           band * bandRows,
           (band + 1) * bandRows,
           job.controller.signal,
+          false,
+          // One band at a time beside the frames: an input waits for one of them at most
+          // (firstPictureProbe: two reference bands and a frame's, 80 ms, were in flight).
+          1,
         );
       } catch (error) {
         if (!job.cancelled) throw error;
