@@ -36,8 +36,6 @@ export const GATHER_BAND_BUDGET_MS = 20;
 export const GATHER_BANDS_IN_FLIGHT = 2;
 /** Rows of a gather's first bands, before its cost per row is known. */
 const GATHER_FIRST_BAND_ROWS = 4;
-/** Rows of a path batch's first band when no batch has been timed yet (8 ms per row at 1 spp). */
-const PATH_FIRST_BAND_ROWS = 2;
 
 const workgroups = (size: number): [number, number] => [Math.ceil(size / 8), Math.ceil(size / 8)];
 const floats = (words: Uint32Array): Float32Array =>
@@ -46,10 +44,8 @@ const floats = (words: Uint32Array): Float32Array =>
 export class TranslucentKernels {
   private packedFor: Octree | null = null;
   private packed: { nodes: Uint32Array; samples: Uint32Array } | null = null;
-  /** GPU ms per image row and sample of the last path batch (null: none yet). */
-  private pathMsPerRowSample: number | null = null;
-  /** The same per row (each row's GPU ms per sample): bands cut by the rows' own costs. */
-  private pathRowMsPerSample: Float64Array | null = null;
+  /** The path tracer's cost per row and sample, from its last batch. */
+  private readonly pathEstimate = new BatchEstimate();
 
   constructor(
     private readonly device: GPUDevice,
@@ -147,77 +143,122 @@ export class TranslucentKernels {
   }
 
   /**
-   * `samples` path-traced samples per pixel, the first with index `offset` of stream `seed`.
-   *
-   * The image goes in bands of rows of about GATHER_BAND_BUDGET_MS of GPU time each, as the
-   * gather does: one sample per pixel of the widget's default skin took 520 ms in one
-   * dispatch on SwiftShader, and an input's picture waited for all of it (issue 23).
-   * `signal`, checked before each band, rejects with an AbortError. The first band is sized
-   * from the time per row and sample of the call before.
+   * `samples` path-traced samples per pixel, the first with index `offset` of stream `seed`,
+   * in bands of rows (imageBatchInBands): one sample per pixel of the widget's default skin
+   * is 33 ms of GPU time in Dawn on SwiftShader, more in Chrome.
    */
   async pathBatch(
     scene: TranslucentScene,
-    options: {
-      samples: number;
-      offset: number;
-      seed: number;
-      ambient?: number;
-      maxBounces?: number;
-      signal?: AbortSignal;
-    },
+    options: BatchOptions & { ambient?: number; maxBounces?: number },
   ): Promise<PathBatch> {
     const code = await linkLibraryKernel(this.library, 'kernels/translucent-path.wesl');
-    const size = scene.size;
-    const { samples } = options;
-    const known = this.pathMsPerRowSample;
-    const perRow = this.pathRowMsPerSample;
-    const { bands, rowMs } = await runInBands(
-      0,
-      size,
-      {
-        budgetMs: GATHER_BAND_BUDGET_MS,
-        firstRows: PATH_FIRST_BAND_ROWS,
-        inFlight: GATHER_BANDS_IN_FLIGHT,
-        msPerRow: known === null ? null : known * samples,
-        rowMs: perRow && perRow.length === size ? perRow.map((ms) => ms * samples) : null,
-        ...(options.signal ? { signal: options.signal } : {}),
-      },
-      async ({ start, rows }) => {
-        const result = await runCompute(this.device, {
-          code,
-          entryPoint: 'pathMain',
-          inputs: [],
-          outputWords: 7 * rows * size,
-          workgroups: [Math.ceil(size / 8), Math.ceil(rows / 8)],
-          uniforms: packParams(scene, {
-            count: samples,
-            seed: options.seed,
-            offset: options.offset,
-            rowStart: start,
-            ...(options.ambient !== undefined ? { ambient: options.ambient } : {}),
-            ...(options.maxBounces !== undefined ? { maxBounces: options.maxBounces } : {}),
-          }),
-        });
-        return { result, milliseconds: result.gpuMs ?? result.wallMs };
-      },
-    );
-    // The mean over the image, not the last band's (the rows below the sphere cost nearly
-    // nothing, and a next batch sized by them went in one band of 35 ms).
-    const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);
-    if (milliseconds > 0 && samples > 0) {
-      this.pathMsPerRowSample = milliseconds / size / samples;
-      this.pathRowMsPerSample = rowMs.map((ms) => ms / samples);
-    }
-    const sums = new Float32Array(7 * size * size);
-    for (const { start, rows, result } of bands)
-      sums.set(floats(result.output).subarray(0, 7 * rows * size), 7 * start * size);
-    return {
-      sums,
-      samples,
-      milliseconds,
-      timing: bands.some((band) => band.result.gpuMs === null) ? 'gpu-wall' : 'gpu-timestamp',
-    };
+    return imageBatchInBands(this.device, {
+      code,
+      entryPoint: 'pathMain',
+      inputs: [],
+      size: scene.size,
+      options,
+      estimate: this.pathEstimate,
+      uniforms: (rowStart) =>
+        packParams(scene, {
+          count: options.samples,
+          seed: options.seed,
+          offset: options.offset,
+          rowStart,
+          ...(options.ambient !== undefined ? { ambient: options.ambient } : {}),
+          ...(options.maxBounces !== undefined ? { maxBounces: options.maxBounces } : {}),
+        }),
+    });
   }
+}
+
+/** What an image batch is asked for: its samples and stream, an input, one dispatch. */
+export interface BatchOptions {
+  samples: number;
+  offset: number;
+  seed: number;
+  /** Checked before each band: an aborted signal rejects with an AbortError. */
+  signal?: AbortSignal;
+  /** The whole image in one dispatch (a preview: bands would add a read-back each). */
+  whole?: boolean;
+}
+
+/** The GPU time of an image kernel's last batch, per sample: sizes the next one's bands. */
+export class BatchEstimate {
+  /** Mean ms per image row and sample (null: no batch timed yet). */
+  msPerRowSample: number | null = null;
+  /** Each row's ms per sample, from a batch cut into several bands (null: none yet). */
+  rowMsPerSample: Float64Array | null = null;
+}
+
+/** Rows of an image kernel's first band when none of its batches has been timed yet. */
+const FIRST_BAND_ROWS = 2;
+
+/**
+ * One image kernel with 7 words per pixel (Σ L, Σ L², capped walks; translucent-path and
+ * the translucent room's path and dipole kernels) in bands of rows of about
+ * GATHER_BAND_BUDGET_MS of GPU time, GATHER_BANDS_IN_FLIGHT at once, cut by each row's time
+ * measured on the kernel's last batch (`estimate`). The GPU runs a dispatch to its end, and
+ * one sample per pixel of these references was a 33–84 ms dispatch on SwiftShader, which an
+ * input's picture waited for (issue 23). `uniforms(rowStart)` packs a band's parameters;
+ * the kernel writes the band's rows only.
+ */
+export async function imageBatchInBands(
+  device: GPUDevice,
+  job: {
+    code: string;
+    entryPoint: string;
+    inputs: Uint32Array[];
+    size: number;
+    options: BatchOptions;
+    estimate: BatchEstimate;
+    uniforms: (rowStart: number) => Uint32Array;
+  },
+): Promise<PathBatch> {
+  const { size, options, estimate } = job;
+  const { samples } = options;
+  const perRow = estimate.rowMsPerSample;
+  const { bands, rowMs } = await runInBands(
+    0,
+    size,
+    {
+      budgetMs: GATHER_BAND_BUDGET_MS,
+      firstRows: FIRST_BAND_ROWS,
+      inFlight: GATHER_BANDS_IN_FLIGHT,
+      msPerRow: estimate.msPerRowSample === null ? null : estimate.msPerRowSample * samples,
+      rowMs: perRow && perRow.length === size ? perRow.map((ms) => ms * samples) : null,
+      ...(options.signal ? { signal: options.signal } : {}),
+      ...(options.whole ? { fixedRows: size } : {}),
+    },
+    async ({ start, rows }) => {
+      const result = await runCompute(device, {
+        code: job.code,
+        entryPoint: job.entryPoint,
+        inputs: job.inputs,
+        outputWords: 7 * rows * size,
+        workgroups: [Math.ceil(size / 8), Math.ceil(rows / 8)],
+        uniforms: job.uniforms(start),
+      });
+      return { result, milliseconds: result.gpuMs ?? result.wallMs };
+    },
+  );
+  // The mean over the image, not the last band's (the rows below the sphere cost nearly
+  // nothing, and a next batch sized by them went in one band of 35 ms); the rows' own
+  // times only from a batch cut into bands (one band says nothing of the rows apart).
+  const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);
+  if (milliseconds > 0 && samples > 0) {
+    estimate.msPerRowSample = milliseconds / size / samples;
+    if (bands.length > 1) estimate.rowMsPerSample = rowMs.map((ms) => ms / samples);
+  }
+  const sums = new Float32Array(7 * size * size);
+  for (const { start, rows, result } of bands)
+    sums.set(floats(result.output).subarray(0, 7 * rows * size), 7 * start * size);
+  return {
+    sums,
+    samples,
+    milliseconds,
+    timing: bands.some((band) => band.result.gpuMs === null) ? 'gpu-wall' : 'gpu-timestamp',
+  };
 }
 
 /** Progressive accumulation of path-traced batches in float64, with per-pixel standard error. */

@@ -22,7 +22,7 @@ import {
   visiblePoint,
   type TranslucentScene,
 } from '../../src/subsurface/translucent.ts';
-import { TranslucentKernels } from '../../src/subsurface/translucentKernels.ts';
+import { TranslucentKernels, type BatchEstimate } from '../../src/subsurface/translucentKernels.ts';
 import { findMaterial } from '../../src/subsurface/materials.ts';
 import { chandrasekharH } from '../support/hFunction.ts';
 import { PathAccumulator } from '../../src/subsurface/translucentKernels.ts';
@@ -154,7 +154,7 @@ describe('translucent kernels on the GPU (Dawn)', () => {
     }
     // A third instance cut into single rows (a huge time per row) gives the same sums.
     const rows = new TranslucentKernels(await nodeDevice(), SHADER_LIBRARY);
-    (rows as unknown as { pathMsPerRowSample: number }).pathMsPerRowSample = 1e6;
+    (rows as unknown as { pathEstimate: BatchEstimate }).pathEstimate.msPerRowSample = 1e6;
     expect(Array.from((await rows.pathBatch(s, options)).sums)).toEqual(Array.from(first.sums));
     const controller = new AbortController();
     controller.abort();
