@@ -669,7 +669,25 @@ export abstract class WidgetElement extends HTMLElement {
       );
     } finally {
       this.rendering = false;
-      if (this.dirty) this.scheduleRender();
+      if (this.dirty) this.renderAfterRender();
     }
+  }
+
+  /**
+   * What was asked while a render ran (an input, the next stage) starts as soon as it ends,
+   * in a task of its own rather than at the next animation frame: the requests are
+   * coalesced already, and while the GPU process is busy animation frames come 30–90 ms
+   * late on SwiftShader (bench/firstPictureProbe.ts), which an input's first picture waited
+   * for after the stale frame ended (issue 23).
+   */
+  private renderAfterRender(): void {
+    if (!this.isConnected || !(this.visible || this.isPresenting())) return;
+    if (this.frameRequest !== null) {
+      cancelAnimationFrame(this.frameRequest);
+      this.frameRequest = null;
+    }
+    setTimeout(() => {
+      if (this.dirty && this.frameRequest === null) void this.renderNow();
+    }, 0);
   }
 }

@@ -518,6 +518,9 @@ export function createView(
       if (started !== generation) return null;
       busy = true;
     }
+    // An input meanwhile: the rest (timing, statistics, drawing) is for a stale picture, and
+    // the input's first picture would wait for it.
+    if (request.signal.aborted) return null;
     const referenceDone = reference.renderer.accumulation.samples >= referenceTarget;
 
     // 3. Specialized against general kernel, once per scene (or on request), after the reference.
@@ -528,6 +531,7 @@ export function createView(
       if (started !== generation) return null;
       kernelTimes.set(key, times);
     }
+    if (request.signal.aborted) return null;
 
     const result = await collect(
       current,
