@@ -180,6 +180,19 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     this.view?.valueChanged?.(name);
   }
 
+  /** Whether the last render drew on WebGPU (startsRightAfterRender). */
+  private drawnOnGpu = false;
+
+  /**
+   * On WebGPU the next render starts as soon as the last ends (first pictures 10–30 ms
+   * sooner on SwiftShader); the CPU twin keeps the animation frame's pacing: chained
+   * right after each other its renders made long tasks of 150–360 ms during a drag
+   * (bench/interaction.ts, dipole-profile, transfer-function, chromatic-media).
+   */
+  protected override startsRightAfterRender(): boolean {
+    return this.drawnOnGpu;
+  }
+
   protected override async drawForPrint(): Promise<void> {
     await this.view?.drawForPrint?.();
   }
@@ -282,6 +295,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     const request = this.nextRequest();
     const { version } = request;
     const backend: Backend<unknown> = await this.backends.choose();
+    this.drawnOnGpu = backend.kind === 'gpu' && view.renderGpu !== undefined;
     if (backend.kind === 'gpu' && view.renderGpu) {
       let frame: Frame | null;
       try {

@@ -674,13 +674,25 @@ export abstract class WidgetElement extends HTMLElement {
   }
 
   /**
-   * What was asked while a render ran (an input, the next stage) starts as soon as it ends,
-   * in a task of its own rather than at the next animation frame: the requests are
-   * coalesced already, and while the GPU process is busy animation frames come 30–90 ms
-   * late on SwiftShader (bench/firstPictureProbe.ts), which an input's first picture waited
-   * for after the stale frame ended (issue 23).
+   * Whether what was asked during a render starts as soon as it ends (renderAfterRender)
+   * rather than at the next animation frame; a subclass says so where it pays.
+   */
+  protected startsRightAfterRender(): boolean {
+    return false;
+  }
+
+  /**
+   * What was asked while a render ran (an input, the next stage) starts at the next
+   * animation frame, or, where startsRightAfterRender says so, as soon as the render ends,
+   * in a task of its own: the requests are coalesced already, and while the GPU process is
+   * busy animation frames come 30–90 ms late on SwiftShader (bench/firstPictureProbe.ts),
+   * which an input's first picture waited for after the stale frame ended (issue 23).
    */
   private renderAfterRender(): void {
+    if (!this.startsRightAfterRender()) {
+      this.scheduleRender();
+      return;
+    }
     if (!this.isConnected || !(this.visible || this.isPresenting())) return;
     if (this.frameRequest !== null) {
       cancelAnimationFrame(this.frameRequest);
