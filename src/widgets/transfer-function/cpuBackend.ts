@@ -197,17 +197,18 @@ export class GpuRenderer implements FrameRenderer {
   ): Promise<RowsCost> {
     const { size } = image;
     const step = Math.max(stepVoxels, 1e-3);
-    // A threshold not timed yet (the reference's first band) is sized from twice the
-    // costliest one timed: 8 rows of the reference untimed took 90 ms on SwiftShader.
-    const timed = [...this.msPerRayVoxel.values()];
-    const known =
-      this.msPerRayVoxel.get(threshold) ?? (timed.length > 0 ? 2 * Math.max(...timed) : undefined);
+    // A threshold not timed yet (the reference's first band, the saving measurement's
+    // other mode) starts with a band of GPU_FIRST_BAND_ROWS rows at one voxel per step,
+    // fewer at finer steps: sized from another threshold's cost, the reference's first band
+    // ran 90 ms and the other mode's (no early termination) over 100 ms on SwiftShader.
+    const known = this.msPerRayVoxel.get(threshold);
+    const firstRows = Math.max(1, Math.round(GPU_FIRST_BAND_ROWS * Math.min(1, step)));
     const { bands, msPerRow } = await runInBands(
       rowStart,
       Math.min(rowEnd, size),
       {
         budgetMs: GPU_BAND_BUDGET_MS,
-        firstRows: GPU_FIRST_BAND_ROWS,
+        firstRows,
         inFlight,
         msPerRow: known === undefined ? null : (known * size) / step,
         ...(signal ? { signal } : {}),
@@ -240,6 +241,8 @@ export async function renderFrame(
   size = renderer.size,
   signal?: AbortSignal,
   fresh = false,
+  /** GPU bands in flight (FrameRenderer.renderInto): 1 for work beside the frames. */
+  inFlight?: number,
 ): Promise<{ image: VolumeImage } & RowsCost> {
   const image = renderer.blank(size);
   const cost = await renderer.renderInto(
@@ -251,6 +254,7 @@ export async function renderFrame(
     size,
     signal,
     fresh,
+    inFlight,
   );
   return { image, ...cost };
 }

@@ -326,6 +326,8 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
         frame.renderer.size,
         signal,
         true,
+        // One band at a time beside the frames, as the reference: an input waits for one.
+        1,
       );
     };
     void (async () => {
