@@ -9,43 +9,24 @@ import { estimateRadiance, sceneCamera, type SceneData } from '../../src/referen
 import { pcgHash, rngNextFloat, rngSeed, type RngState } from '../../src/reference/rng.ts';
 import { packScene, sceneData } from '../../src/scene/pack.ts';
 import { plan } from '../../src/scene/plan.ts';
-import { sceneFrom } from '../support/sceneRender.ts';
+import { boxSceneJson, sceneFrom } from '../support/sceneRender.ts';
 
 const SIZE = 8;
 const SAMPLES = 6;
 
 function boxScene(order: number | 'unlimited', phase: Record<string, unknown>, pointLight = true) {
-  return {
-    image: { width: SIZE, height: SIZE },
+  // Channels differ (chromatic σt, a strongly absorbing blue) so that the mean-rate free
+  // flights carry spectral weights, as in the issue-19 box.
+  return boxSceneJson({
+    order,
+    phase,
+    sigmaA: [0.25, 0.1, 1.5],
+    sigmaS: [1, 1.98, 0.6],
+    size: SIZE,
     samplesPerPixel: SAMPLES,
     seed: 5,
-    scatteringOrder: order,
-    camera: {
-      type: 'perspective',
-      position: [0.3, 0.4, 3.2],
-      target: [0, 0, 0],
-      up: [0, 1, 0],
-      fovY: 45,
-    },
-    media: [
-      {
-        type: 'homogeneous',
-        bounds: { type: 'box', min: [-1, -1, -1], max: [1, 1, 1] },
-        // Channels differ (chromatic σt, a strongly absorbing blue) so that the mean-rate
-        // free flights carry spectral weights, as in the issue-19 box.
-        sigmaA: [0.25, 0.1, 1.5],
-        sigmaS: [1, 1.98, 0.6],
-        phase,
-      },
-    ],
-    lights: [
-      { type: 'directional', direction: [0.3, -0.9, -0.2], irradiance: [2, 2, 2] },
-      // Inside the box: its shadow rays start and end in the medium.
-      ...(pointLight
-        ? [{ type: 'point', position: [0.2, 0.5, 0.1], intensity: [0.3, 0.2, 0.1] }]
-        : []),
-    ],
-  };
+    pointLight,
+  });
 }
 
 /** A spot light above the box, its cone across the box's top. */

@@ -28,6 +28,7 @@ import {
 } from '../support/analyticScenes.ts';
 import { nodeDevice } from '../support/nodeGpu.ts';
 import {
+  boxSceneJson,
   cpuEstimate,
   gpuEstimate,
   exampleScene,
@@ -127,32 +128,16 @@ describe('scene kernel on the GPU', () => {
   it(
     'gray media (one exponential per shadow ray): the one-medium path tracer and single scattering, GPU = twin',
     async () => {
-      const gray = (order: number | 'unlimited') => ({
-        image: { width: 8, height: 8 },
-        samplesPerPixel: 64,
-        seed: 9,
-        scatteringOrder: order,
-        camera: {
-          type: 'perspective',
-          position: [0.3, 0.4, 3.2],
-          target: [0, 0, 0],
-          up: [0, 1, 0],
-          fovY: 45,
-        },
-        media: [
-          {
-            type: 'homogeneous',
-            bounds: { type: 'box', min: [-1, -1, -1], max: [1, 1, 1] },
-            sigmaA: [0.1, 0.1, 0.1],
-            sigmaS: [1.5, 1.5, 1.5],
-            phase: { type: 'henyey-greenstein', g: 0.6 },
-          },
-        ],
-        lights: [
-          { type: 'directional', direction: [0.3, -0.9, -0.2], irradiance: [2, 2, 2] },
-          { type: 'point', position: [0.2, 0.5, 0.1], intensity: [0.3, 0.2, 0.1] },
-        ],
-      });
+      const gray = (order: number | 'unlimited') =>
+        boxSceneJson({
+          order,
+          phase: { type: 'henyey-greenstein', g: 0.6 },
+          sigmaA: [0.1, 0.1, 0.1],
+          sigmaS: [1.5, 1.5, 1.5],
+          size: 8,
+          samplesPerPixel: 64,
+          seed: 9,
+        });
       for (const order of ['unlimited', 1] as const) {
         const scene = await sceneFrom(gray(order));
         const conditions = plan(scene.scene).conditions;

@@ -53,6 +53,52 @@ export async function exampleScene(
 }
 
 /** A scene from JSON-compatible data, resolved (grid files under public/). */
+/**
+ * The homogeneous box [−1, 1]³ seen in perspective from (0.3, 0.4, 3.2), lit by a sun from
+ * above and (unless `pointLight` is false) a point light inside it, whose shadow rays
+ * start and end in the medium: the one-medium kernels' test scene
+ * (tests/reference/scene-one-medium.test.ts, tests/shaders/scene-render.test.ts).
+ */
+export function boxSceneJson(options: {
+  order: number | 'unlimited';
+  phase: Record<string, unknown>;
+  sigmaA: readonly number[];
+  sigmaS: readonly number[];
+  size: number;
+  samplesPerPixel: number;
+  seed: number;
+  pointLight?: boolean;
+}) {
+  return {
+    image: { width: options.size, height: options.size },
+    samplesPerPixel: options.samplesPerPixel,
+    seed: options.seed,
+    scatteringOrder: options.order,
+    camera: {
+      type: 'perspective',
+      position: [0.3, 0.4, 3.2],
+      target: [0, 0, 0],
+      up: [0, 1, 0],
+      fovY: 45,
+    },
+    media: [
+      {
+        type: 'homogeneous',
+        bounds: { type: 'box', min: [-1, -1, -1], max: [1, 1, 1] },
+        sigmaA: [...options.sigmaA],
+        sigmaS: [...options.sigmaS],
+        phase: options.phase,
+      },
+    ],
+    lights: [
+      { type: 'directional', direction: [0.3, -0.9, -0.2], irradiance: [2, 2, 2] },
+      ...(options.pointLight === false
+        ? []
+        : [{ type: 'point', position: [0.2, 0.5, 0.1], intensity: [0.3, 0.2, 0.1] }]),
+    ],
+  };
+}
+
 export function sceneFrom(json: unknown): Promise<ResolvedScene> {
   return resolveScene(parseScene(json), nodeFileReader);
 }
