@@ -56,6 +56,28 @@ export function rayBoxSegment(
   return t0 <= t1 ? [t0, t1] : EMPTY;
 }
 
+/**
+ * Where a ray from a point of the closed box leaves it, at most tMax (geometry.wesl
+ * rayBoxExit): the nearest crossing of a face the ray moves toward; axes with d = 0 never
+ * bind; never negative.
+ */
+export function rayBoxExit(
+  boxMin: Vec3,
+  boxMax: Vec3,
+  origin: Vec3,
+  direction: Vec3,
+  tMax: number,
+): number {
+  let t = Math.min(tMax, RAY_T_LIMIT);
+  for (let axis = 0; axis < 3; axis++) {
+    const d = direction[axis] as number;
+    if (d === 0) continue;
+    const face = (d > 0 ? boxMax[axis] : boxMin[axis]) as number;
+    t = Math.min(t, planeCrossing(face - (origin[axis] as number), d));
+  }
+  return Math.max(t, 0);
+}
+
 export function raySphereSegment(
   center: Vec3,
   radius: number,

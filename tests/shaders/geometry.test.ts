@@ -2,7 +2,9 @@
 // sphere, with the hard cases (parallel rays, flat boxes, tangent rays, origins inside,
 // a far ray at a small sphere where the textbook quadratic cancels).
 import { describeShaderFunction, type Tolerance } from '../support/shaderHarness.ts';
-import { rayBoxSegment, raySphereSegment } from '../../src/reference/geometry.ts';
+import { describe, expect, it } from 'vitest';
+import { rayBoxExit, rayBoxSegment, raySphereSegment } from '../../src/reference/geometry.ts';
+import { rngNextFloat, rngSeed } from '../../src/reference/rng.ts';
 import type { Vec3 } from '../../src/reference/phase.ts';
 
 const v3 = (a: readonly number[]): Vec3 => [a[0] ?? NaN, a[1] ?? NaN, a[2] ?? NaN];
@@ -75,6 +77,88 @@ describeShaderFunction({
       expected: [1, 2],
     },
   ],
+});
+
+describeShaderFunction({
+  module: 'geometry',
+  fn: 'rayBoxExit',
+  args: ['f32[3]', 'f32[3]', 'f32[3]', 'f32[3]', 'f32'],
+  result: 'f32',
+  wrapper: {
+    imports: ['rayBoxExit'],
+    wgsl: `fn caseUnderTest(lo: array<f32, 3>, hi: array<f32, 3>, o: array<f32, 3>, d: array<f32, 3>, tMax: f32) -> f32 {
+  return rayBoxExit(vec3f(lo[0], lo[1], lo[2]), vec3f(hi[0], hi[1], hi[2]), vec3f(o[0], o[1], o[2]), vec3f(d[0], d[1], d[2]), tMax);
+}`,
+  },
+  twin: (lo: number[], hi: number[], o: number[], d: number[], tMax: number) =>
+    rayBoxExit(v3(lo), v3(hi), v3(o), v3(d), tMax),
+  tolerance: BOX_TOLERANCE,
+  cases: [
+    {
+      name: 'from the centre along −z: 1',
+      args: [[0, 0, 0], [2, 2, 2], [1, 1, 1], [0, 0, -1], 10],
+      expected: 1,
+    },
+    {
+      name: 'oblique from inside: the nearest far face (y)',
+      args: [[-1, -1, -1], [1, 1, 1], [0.2, 0.5, -0.3], [0.48, 0.6, -0.64], 100],
+      expected: 0.5 / 0.6,
+    },
+    {
+      name: 'tMax binds: 0.25',
+      args: [[-1, -1, -1], [1, 1, 1], [0, 0, 0], [1, 0, 0], 0.25],
+      expected: 0.25,
+    },
+    {
+      name: 'on the face it moves toward: 0',
+      args: [[0, 0, 0], [1, 1, 1], [1, 0.5, 0.5], [1, 0, 0], 10],
+      expected: 0,
+    },
+    {
+      name: 'on a face, moving along it: the other axis binds',
+      args: [[0, 0, 0], [1, 1, 1], [0.25, 1, 0.5], [1, 0, 0], 10],
+      expected: 0.75,
+    },
+    {
+      name: 'just outside (rounding) and moving away: 0, not negative',
+      args: [[0, 0, 0], [1, 1, 1], [1.000001, 0.5, 0.5], [1, 0, 0], 10],
+      expected: 0,
+    },
+    {
+      name: 'zero direction: tMax',
+      args: [[0, 0, 0], [1, 1, 1], [0.5, 0.5, 0.5], [0, 0, 0], 7],
+      expected: 7,
+    },
+    {
+      name: 'subnormal slope on one axis: the other axes bind',
+      args: [[0, 0, 0], [1, 1, 1], [0.5, 0.5, 0.5], [1e-40, 0, 1], 10],
+      expected: 0.5,
+    },
+    {
+      name: 'huge tMax: clamped to 1e17 when nothing binds',
+      args: [[0, 0, 0], [1, 1, 1], [0.5, 0.5, 0.5], [0, 0, 0], 3e38],
+      expected: 1e17,
+    },
+  ],
+});
+
+describe('geometry.rayBoxExit (twin): rayBoxSegment’s t1 for origins in the box', () => {
+  it('agrees with rayBoxSegment(…, 0, tMax)[1] at 2000 random interior points and directions', () => {
+    const state = { value: rngSeed(19, 0) };
+    const between = (a: number, b: number): number => a + (b - a) * rngNextFloat(state);
+    for (let i = 0; i < 2000; i++) {
+      const lo: Vec3 = [between(-3, 0), between(-3, 0), between(-3, 0)];
+      const hi: Vec3 = [between(0, 3), between(0, 3), between(0, 3)];
+      const o: Vec3 = [between(lo[0], hi[0]), between(lo[1], hi[1]), between(lo[2], hi[2])];
+      const d: Vec3 = [between(-1, 1), between(-1, 1), between(-1, 1)];
+      // Some directions parallel to an axis plane, as a directional light's can be.
+      if (i % 5 === 0) d[i % 3] = 0;
+      const tMax = i % 7 === 0 ? between(0, 1) : 1e17;
+      const [t0, t1] = rayBoxSegment(lo, hi, o, d, 0, tMax);
+      expect(t0).toBe(0);
+      expect(rayBoxExit(lo, hi, o, d, tMax)).toBeCloseTo(t1, 12);
+    }
+  });
 });
 
 // Haines et al. 2019: dot products (≈ 3 ULP each), one sqrt and one division.
