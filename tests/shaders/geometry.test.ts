@@ -150,9 +150,10 @@ describe('geometry.rayBoxExit (twin): rayBoxSegment’s t1 for origins in the bo
       const lo: Vec3 = [between(-3, 0), between(-3, 0), between(-3, 0)];
       const hi: Vec3 = [between(0, 3), between(0, 3), between(0, 3)];
       const o: Vec3 = [between(lo[0], hi[0]), between(lo[1], hi[1]), between(lo[2], hi[2])];
-      const d: Vec3 = [between(-1, 1), between(-1, 1), between(-1, 1)];
       // Some directions parallel to an axis plane, as a directional light's can be.
-      if (i % 5 === 0) d[i % 3] = 0;
+      const d = [between(-1, 1), between(-1, 1), between(-1, 1)].map((x, axis) =>
+        i % 5 === 0 && axis === i % 3 ? 0 : x,
+      ) as unknown as Vec3;
       const tMax = i % 7 === 0 ? between(0, 1) : 1e17;
       const [t0, t1] = rayBoxSegment(lo, hi, o, d, 0, tMax);
       expect(t0).toBe(0);

@@ -135,6 +135,39 @@ fn main() {
     expect(core.created().shaderModules).toBe(before + 1);
   });
 
+  it('runCompute compiles off the queue: a compile error once per attempt, with line numbers; a good kernel once', async () => {
+    const device = await nodeDevice();
+    const core = gpuCore(device);
+    const job = (body: string) => ({
+      code: `
+@group(0) @binding(0) var<storage, read_write> y: array<u32>;
+@compute @workgroup_size(1)
+fn main() {
+  ${body}
+}`,
+      inputs: [],
+      outputWords: 1,
+      workgroups: [1] as [number],
+    });
+    const error = await runCompute(device, job('y[0] = undefinedName;')).catch((e: unknown) => e);
+    expect(error).toBeInstanceOf(GpuError);
+    const gpuError = error as GpuError;
+    expect(gpuError.kind).toBe('validation');
+    expect(gpuError.message).toMatch(/^compute "main": /);
+    expect(gpuError.compilation.find((n) => n.type === 'error')?.line).toBe(5);
+    // A failed compile is not kept: the next call compiles (and fails) again.
+    const modules = core.created().shaderModules;
+    await expect(runCompute(device, job('y[0] = undefinedName;'))).rejects.toBeInstanceOf(GpuError);
+    expect(core.created().shaderModules).toBe(modules + 1);
+    // A good kernel compiles once and is reused.
+    const pipelines = core.created().computePipelines;
+    for (let i = 0; i < 3; i++) {
+      const result = await runCompute(device, job('y[0] = 4321u;'));
+      expect([...result.output]).toEqual([4321]);
+    }
+    expect(core.created().computePipelines).toBe(pipelines + 1);
+  });
+
   it('caches render pipelines by their state', async () => {
     const device = await nodeDevice();
     const core = gpuCore(device);
