@@ -24,9 +24,11 @@ const ROOT = fileURLToPath(new URL('..', import.meta.url));
 /** Installed before the page's scripts: wraps the GPU calls that can stall a frame. */
 const WRAP = `((stacks) => {
   const log = [];
-  // With --stacks: the calling functions of each entry (readable in an unminified build).
+  // With --stacks: the calling functions of each entry (readable in an unminified build),
+  // deep enough to reach the widget's own function (V8 keeps 10 frames by default).
+  if (stacks) Error.stackTraceLimit = 40;
   const caller = () => stacks
-    ? (new Error().stack || '').split('\\n').slice(3, 11)
+    ? (new Error().stack || '').split("\\n").slice(3, 30)
         .map((line) => line.trim().replace(/^at /, '').replace(/ \\(.*\\)$/, '')).join(' < ')
     : '';
   window.__probe = log;

@@ -6,6 +6,7 @@
 import { describe, expect, it } from 'vitest';
 import { parseParameters } from '../../src/widgets/parameters.ts';
 import {
+  GPU_BACKGROUND_BAND_BUDGET_MS,
   GPU_BAND_BUDGET_MS,
   GPU_BANDS_IN_FLIGHT,
   GpuRenderer,
@@ -23,7 +24,18 @@ class FakeGpu {
   requests: RowsRequest[] = [];
   inFlight = 0;
   largestInFlight = 0;
-  constructor(private readonly msPerRayVoxel: number) {}
+  constructor(
+    private readonly msPerRayVoxel: number,
+    /** The cost of a row relative to the others (rays through the phantom cost more). */
+    private readonly rowWeight: (row: number) => number = () => 1,
+  ) {}
+
+  /** What rows [start, end) of a size-wide image cost at Δs = step voxels (ms). */
+  cost(start: number, end: number, size: number, step: number): number {
+    let weight = 0;
+    for (let row = start; row < end; row++) weight += this.rowWeight(row);
+    return (this.msPerRayVoxel * size * weight) / step;
+  }
 
   async renderRows(request: RowsRequest): Promise<GpuRows> {
     this.requests.push(request);
@@ -50,7 +62,7 @@ class FakeGpu {
       plannedPerPixel: new Uint32Array(pixels).fill(2),
       rowStart: request.rowStart,
       rows,
-      milliseconds: (this.msPerRayVoxel * pixels) / request.stepVoxels,
+      milliseconds: this.cost(request.rowStart, request.rowEnd, request.size, request.stepVoxels),
       timing: 'gpu-timestamp',
     };
   }
@@ -98,6 +110,36 @@ describe('transfer-function GPU bands', () => {
     gpu.requests = [];
     await r.renderInto(r.blank(160), inputs, 0.125, 0.01, 0, 4);
     for (const q of gpu.requests) expect(q.rowEnd - q.rowStart).toBe(1);
+  });
+
+  it('cuts by the measured cost of each row, and the work beside the frames in smaller bands', async () => {
+    // Rows 60–99 (rays through the phantom) cost 10× the others: 16 ms per row there.
+    const gpu = new FakeGpu(0.01, (row) => (row >= 60 && row < 100 ? 10 : 1));
+    const r = renderer(gpu);
+    // Timed row by row over two frames (a first band's time is spread over its rows).
+    for (let i = 0; i < 2; i++) await r.renderInto(r.blank(160), inputs, 1, 0.01, 0, 160);
+    // Every band of several rows within its budget (a last sliver may add half of it).
+    const fits = (budget: number) => {
+      for (const q of gpu.requests) {
+        const ms = gpu.cost(q.rowStart, q.rowEnd, 160, 1);
+        if (q.rowEnd - q.rowStart > 1)
+          expect(ms, `rows ${q.rowStart}–${q.rowEnd}`).toBeLessThanOrEqual(1.5 * budget);
+      }
+    };
+    gpu.requests = [];
+    await r.renderInto(r.blank(160), inputs, 1, 0.01, 0, 160);
+    fits(GPU_BAND_BUDGET_MS);
+    // The cheap rows still go in bands of about the budget, the dear ones one by one.
+    const cheapRows = Math.floor(GPU_BAND_BUDGET_MS / 1.6);
+    expect(gpu.requests.some((q) => q.rowEnd - q.rowStart >= cheapRows - 1)).toBe(true);
+    const dear = gpu.requests.filter((q) => q.rowStart >= 60 && q.rowEnd <= 100);
+    expect(dear.length).toBeGreaterThan(30);
+    expect(dear.every((q) => q.rowEnd - q.rowStart === 1)).toBe(true);
+    // One band in flight (the reference, the saving measurement): the smaller budget.
+    gpu.requests = [];
+    await r.renderInto(r.blank(160), inputs, 1, 0.01, 0, 160, undefined, false, 1);
+    fits(GPU_BACKGROUND_BAND_BUDGET_MS);
+    expect(gpu.requests.some((q) => q.rowEnd - q.rowStart > 1)).toBe(true);
   });
 
   it(`never has more than ${GPU_BANDS_IN_FLIGHT} bands in flight`, async () => {

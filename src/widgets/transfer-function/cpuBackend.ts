@@ -155,6 +155,13 @@ function addBand(
  * (126–166 ms on SwiftShader) held the next input's preview behind it (issue 23; bands.ts).
  */
 export const GPU_BAND_BUDGET_MS = 15;
+/**
+ * GPU time one band of the work beside the frames may take (ms): the reference and the
+ * saving measurement keep a band in flight each, and an input's preview queues behind
+ * both (firstPictureProbe: a reference band of 79 ms and a saving band of 36 ms were in
+ * flight when the input came).
+ */
+export const GPU_BACKGROUND_BAND_BUDGET_MS = 8;
 /** Bands submitted before the first of them is read back (bands.ts). */
 export const GPU_BANDS_IN_FLIGHT = 2;
 /** Rows of the first bands, before any band of this renderer has been timed. */
@@ -173,6 +180,12 @@ export class GpuRenderer implements FrameRenderer {
    * bands ran 164 ms), absent before the first band.
    */
   private readonly msPerRayVoxel = new Map<number, number>();
+  /**
+   * Measured GPU ms of each row of a full-size image at one voxel per step, by threshold:
+   * rays through the phantom cost many times those beside it, so bands sized by the mean
+   * row overran their budget (bands.ts rowMs).
+   */
+  private readonly rowMsPerVoxel = new Map<number, Float64Array>();
 
   constructor(private readonly gpu: VolumeRendererGpu) {}
 
@@ -203,14 +216,29 @@ export class GpuRenderer implements FrameRenderer {
     // ran 90 ms and the other mode's (no early termination) over 100 ms on SwiftShader.
     const known = this.msPerRayVoxel.get(threshold);
     const firstRows = Math.max(1, Math.round(GPU_FIRST_BAND_ROWS * Math.min(1, step)));
-    const { bands, msPerRow } = await runInBands(
+    const end = Math.min(rowEnd, size);
+    // Per-row costs where every row of this call has been timed at this size.
+    const perRow = size === this.size ? this.rowMsPerVoxel.get(threshold) : undefined;
+    let rowMs: Float64Array | null = null;
+    if (perRow) {
+      rowMs = new Float64Array(end);
+      for (let row = rowStart; row < end; row++) rowMs[row] = perRow[row]! / step;
+      if (rowMs.subarray(rowStart, end).some((ms) => !(ms > 0))) rowMs = null;
+    }
+    const {
+      bands,
+      msPerRow,
+      rowMs: measured,
+    } = await runInBands(
       rowStart,
-      Math.min(rowEnd, size),
+      end,
       {
-        budgetMs: GPU_BAND_BUDGET_MS,
+        // Work beside the frames (one band in flight) in smaller bands: an input waits for it.
+        budgetMs: inFlight === 1 ? GPU_BACKGROUND_BAND_BUDGET_MS : GPU_BAND_BUDGET_MS,
         firstRows,
         inFlight,
         msPerRow: known === undefined ? null : (known * size) / step,
+        rowMs,
         ...(signal ? { signal } : {}),
       },
       (band) =>
@@ -224,6 +252,16 @@ export class GpuRenderer implements FrameRenderer {
         }),
     );
     if (msPerRow !== null) this.msPerRayVoxel.set(threshold, (msPerRow * step) / size);
+    if (size === this.size) {
+      let perRowNow = this.rowMsPerVoxel.get(threshold);
+      if (!perRowNow) {
+        perRowNow = new Float64Array(size);
+        this.rowMsPerVoxel.set(threshold, perRowNow);
+      }
+      for (const band of bands)
+        for (let row = band.start; row < band.start + band.rows; row++)
+          perRowNow[row] = measured[row]! * step;
+    }
     if (signal?.aborted) throw abortError('the rest of this picture');
     for (const band of bands) addBand(image, band, band.start);
     const milliseconds = bands.reduce((sum, band) => sum + band.milliseconds, 0);

@@ -437,9 +437,13 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
     if (referenceJob?.key === frame.key) return;
     if (referenceTimer) clearTimeout(referenceTimer);
     setReferenceStatus('Reference: waiting for the view to settle…', 0);
+    // An input before the delay is over cancels the start: lastFrame is still this frame
+    // while the input's preview renders (only full-quality frames replace it), and a
+    // reference started then ran its bands under the preview (firstPictureProbe).
+    const settledSignal = context.inputSignal;
     referenceTimer = setTimeout(() => {
       referenceTimer = null;
-      if (lastFrame?.key !== frame.key) return;
+      if (settledSignal.aborted || lastFrame?.key !== frame.key) return;
       void ensureReference(frame);
       // The next input's first picture must not queue behind the reference's bands: it
       // pauses (keeping its bands) and goes on once the new picture has settled.
