@@ -14,7 +14,7 @@ import {
   CAMERA_ORTHOGRAPHIC,
   type Camera,
 } from './camera.ts';
-import { RAY_T_LIMIT, rayBoxSegment, raySphereSegment } from './geometry.ts';
+import { RAY_T_LIMIT, rayBoxExit, rayBoxSegment, raySphereSegment } from './geometry.ts';
 import {
   LIGHT_DIRECTIONAL,
   LIGHT_ENVIRONMENT,
@@ -270,6 +270,47 @@ export function mediumSegment(
       ? raySphereSegment(medium.boundsA, medium.radius, origin, direction, tMin, tMax)
       : rayBoxSegment(medium.boundsA, medium.boundsB, origin, direction, tMin, tMax);
   return [segment[0], segment[1]];
+}
+
+/**
+ * The part [0, t1] of a ray from a position inside the one medium (integrator.wesl
+ * oneMediumSegmentFrom): rayBoxExit for a box, mediumSegment for a ball.
+ */
+export function oneMediumSegmentFrom(
+  medium: SceneMedium,
+  position: Vec3,
+  direction: Vec3,
+  tMax: number,
+): [number, number] {
+  if (medium.shape === SCENE_BOUNDS_SPHERE)
+    return mediumSegment(medium, position, direction, 0, tMax);
+  return [0, rayBoxExit(medium.boundsA, medium.boundsB, position, direction, tMax)];
+}
+
+/** What the one-medium kernels read once per invocation (integrator.wesl oneMediumLoad). */
+export interface OneMediumRecords {
+  medium: SceneMedium;
+  firstLight: Light;
+  maxOrder: number;
+}
+
+/** The one-medium kernels' records: medium 0, light 0 and the maximum scattering order. */
+export function oneMediumLoad(scene: SceneData): OneMediumRecords {
+  return {
+    medium: sceneMedium(scene, 0),
+    firstLight: sceneLight(scene, 0),
+    maxOrder: sceneHeader(scene)[3],
+  };
+}
+
+/**
+ * What the linked estimator reads before its sample loop (integrator.wesl
+ * integratorInvocationStart): the one-medium records under those kernels, else nothing.
+ */
+export function integratorInvocationStart(scene: SceneData): OneMediumRecords | null {
+  return on(scene, 'oneHomogeneousMedium') || on(scene, 'oneGridMedium')
+    ? oneMediumLoad(scene)
+    : null;
 }
 
 export function mediumDensity(scene: SceneData, medium: SceneMedium, p: Vec3): number {
@@ -951,10 +992,6 @@ export function tracedPathStart(origin: Vec3, direction: Vec3): TracedPath {
  * estimation, a sampled direction and Russian roulette. True when the path has ended.
  */
 export function pathTracingStep(scene: SceneData, path: TracedPath, state: RngState): boolean {
-  if (path.segments >= PATH_MAX_VERTICES) {
-    scene.stats.capped += 1;
-    return true;
-  }
   path.segments += 1;
   const rayOrigin = path.origin;
   const rayDirection = path.direction;
@@ -1007,15 +1044,24 @@ export function pathTracingStep(scene: SceneData, path: TracedPath, state: RngSt
   path.weight = mul(path.weight, vertexScatterWeight(vertex));
   path.direction = vertexSampleDirection(scene, vertex, [rngNextFloat(state), rngNextFloat(state)]);
   path.origin = vertex.position;
-  return russianRoulette(path, state);
+  return tracedPathRoulette(scene, path, state);
 }
 
-/** Russian roulette after a vertex: survival q = min(1, max channel of w), survivors w /= q. */
-function russianRoulette(path: TracedPath, state: RngState): boolean {
+/**
+ * The end of a path tracer's segment after its vertex (integrator.wesl tracedPathRoulette):
+ * Russian roulette with survival q = min(1, max channel of w), survivors w /= q, the
+ * number drawn only when q < 1; then the cap of PATH_MAX_VERTICES segments (counted). True
+ * when the path ends here.
+ */
+export function tracedPathRoulette(scene: SceneData, path: TracedPath, state: RngState): boolean {
   const survival = Math.min(maxComponent(path.weight), 1);
   if (survival < 1) {
     if (!(rngNextFloat(state) < survival)) return true;
     path.weight = scale(path.weight, 1 / survival);
+  }
+  if (path.segments >= PATH_MAX_VERTICES) {
+    scene.stats.capped += 1;
+    return true;
   }
   return false;
 }
@@ -1080,7 +1126,7 @@ export function oneMediumLightContribution(
   const phase = mediumPhaseEval(scene, medium, wo, sample.direction);
   const unshadowed = sample.irradiance.map((e) => e * phase) as Rgb;
   if (!anyPositive(unshadowed)) return [0, 0, 0];
-  const segment = mediumSegment(medium, position, sample.direction, 0, sample.distance);
+  const segment = oneMediumSegmentFrom(medium, position, sample.direction, sample.distance);
   const shadow: Rgb =
     segment[0] < segment[1]
       ? segmentTransmittance(scene, medium, position, sample.direction, segment, state)
@@ -1258,11 +1304,7 @@ export function oneMediumEquiangularPoint(
  * medium escapes (the scene has no environment and no surface). True when it has ended.
  */
 export function oneMediumPathStep(scene: SceneData, path: TracedPath, state: RngState): boolean {
-  const medium = sceneMedium(scene, 0);
-  if (path.segments >= PATH_MAX_VERTICES) {
-    scene.stats.capped += 1;
-    return true;
-  }
+  const medium = oneMediumLoad(scene).medium;
   path.segments += 1;
   const segment = mediumSegment(medium, path.origin, path.direction, 0, RAY_T_LIMIT);
   if (!(segment[0] < segment[1])) return true;
@@ -1287,7 +1329,7 @@ export function oneMediumPathStep(scene: SceneData, path: TracedPath, state: Rng
   );
   path.direction = mediumPhaseSample(scene, medium, wo, [rngNextFloat(state), rngNextFloat(state)]);
   path.origin = position;
-  return russianRoulette(path, state);
+  return tracedPathRoulette(scene, path, state);
 }
 
 /** Volumetric path tracing in one medium (homogeneous or grid), segment by segment. */
