@@ -192,7 +192,34 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
         ? spp
         : Math.max(1, Math.min(spp, Math.floor(ESTIMATOR_PASS_MS / s.msPerSpp)));
     let msPerSpp = 0;
-    for (const name of ESTIMATORS) {
+    if (preview) {
+      // The preview's four passes (one sample per pixel for each estimator, and the
+      // reference's) go to the GPU together and come back together: awaited one by one,
+      // each cost a read-back round trip of 7–10 ms in Chrome on SwiftShader
+      // (firstPictureProbe). The same streams, accumulated in the same order.
+      const passes = await Promise.all([
+        ...ESTIMATORS.map((name) => run(inputs, ESTIMATOR_INDEX[name], size, 1, s.nextStream)),
+        run(
+          inputs,
+          ESTIMATOR_INDEX.oneChannel,
+          size,
+          1,
+          REFERENCE_FRAME_OFFSET + s.referencePasses,
+        ),
+      ]);
+      if (request.signal.aborted) return null;
+      ESTIMATORS.forEach((name, i) => {
+        const pass = passes[i]!;
+        accumulate(s.estimators[name], pass.sums, 1, pass.milliseconds);
+        frameMilliseconds += pass.milliseconds;
+        msPerSpp = Math.max(msPerSpp, pass.milliseconds);
+      });
+      const reference = passes[ESTIMATORS.length]!;
+      s.referencePasses++;
+      accumulate(s.reference, reference.sums, 1, reference.milliseconds);
+      frameMilliseconds += reference.milliseconds;
+    }
+    for (const name of preview ? [] : ESTIMATORS) {
       for (let done = 0, part = 0; done < spp; part++) {
         const samples = Math.min(chunk, spp - done);
         const pass = await run(inputs, ESTIMATOR_INDEX[name], size, samples, s.nextStream + part);
