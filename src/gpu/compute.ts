@@ -4,7 +4,7 @@
 // buffers and the timer are leased from its pools, so repeated calls allocate
 // nothing once warm.
 import { gpuCore, mapRange, type Lease } from './core.ts';
-import { GpuError, withErrorScopes, type ScopeOptions } from './errors.ts';
+import { withErrorScopes, type ScopeOptions } from './errors.ts';
 
 export interface ComputeJob {
   /** Linked WGSL. Binding 0..n-1 of group 0 are `inputs`, binding n is the output. */
@@ -46,60 +46,12 @@ function byteSize(words: number): number {
 export async function runCompute(device: GPUDevice, job: ComputeJob): Promise<ComputeResult> {
   const entryPoint = job.entryPoint ?? 'main';
   const what = `compute "${entryPoint}"`;
-  const pipeline = await compiledPipeline(device, job.code, entryPoint, what);
+  // Compiled once per device off the queue, checked in its own error scopes (GpuCore).
+  const pipeline = await gpuCore(device).checkedComputePipeline(
+    { code: job.code, entryPoint },
+    what,
+  );
   return dispatch(device, () => pipeline, job, { what });
-}
-
-/** The pipelines runCompute compiled, by device, entry point and code. */
-const compiled = new WeakMap<GPUDevice, Map<string, Promise<GPUComputePipeline>>>();
-
-/**
- * The pipeline of `code`, compiled once per device with createComputePipelineAsync, off
- * the device's queue. A pipeline created synchronously is compiled on the queue itself,
- * so that every later submission (an input's first picture, on any widget of the page)
- * waits for the compile: in Chrome on SwiftShader the path-traced reference of
- * translucent-render compiled for about 0.5 s right after the widget settled, and an input
- * in that window waited for all of it (bench/firstPictureProbe.ts). The first call checks
- * the compile in its own error scopes (a shader that does not compile is a validation
- * GpuError with the compiler's messages, as before); later calls find the resolved
- * promise and add no round trip. A failed compile is forgotten, so a later call retries.
- */
-function compiledPipeline(
-  device: GPUDevice,
-  code: string,
-  entryPoint: string,
-  what: string,
-): Promise<GPUComputePipeline> {
-  let byCode = compiled.get(device);
-  if (!byCode) {
-    byCode = new Map();
-    compiled.set(device, byCode);
-  }
-  const key = `${entryPoint}\n${code}`;
-  let pipeline = byCode.get(key);
-  if (!pipeline) {
-    const pipelines = byCode;
-    pipeline = withErrorScopes(device, what, () =>
-      gpuCore(device).computePipelineAsync({ code, entryPoint }),
-    ).catch((error: unknown) => {
-      pipelines.delete(key);
-      throw pipelineFailure(error, what);
-    });
-    pipelines.set(key, pipeline);
-  }
-  return pipeline;
-}
-
-/**
- * A rejected createComputePipelineAsync (a GPUPipelineError, reason "validation" or
- * "internal") as the GpuError an error scope would have given; other errors unchanged.
- */
-function pipelineFailure(error: unknown, what: string): unknown {
-  if (error instanceof GpuError || typeof error !== 'object' || error === null) return error;
-  const reason = (error as { reason?: unknown }).reason;
-  if (reason !== 'validation' && reason !== 'internal') return error;
-  const message = (error as { message?: unknown }).message;
-  return new GpuError(what, reason, typeof message === 'string' ? message : String(error));
 }
 
 /**

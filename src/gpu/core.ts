@@ -12,7 +12,7 @@
 //  - read-back through a pooled MAP_READ buffer.
 // Error scopes live in errors.ts; what the core creates inside a scope is reported to
 // it, so a failed compile names the compiler's messages and is not cached.
-import { noteCreated } from './errors.ts';
+import { GpuError, noteCreated, withErrorScopes } from './errors.ts';
 import { GpuTimer } from './timing.ts';
 
 /** Most entries kept per cache before the least recently used is dropped. */
@@ -199,6 +199,7 @@ export class GpuCore {
   private readonly modules = new LruCache<GPUShaderModule>(CACHE_LIMIT);
   private readonly computePipelines = new LruCache<GPUComputePipeline>(CACHE_LIMIT);
   private readonly asyncComputePipelines = new LruCache<Promise<GPUComputePipeline>>(CACHE_LIMIT);
+  private readonly checkedComputePipelines = new LruCache<Promise<GPUComputePipeline>>(CACHE_LIMIT);
   private readonly renderPipelines = new LruCache<GPURenderPipeline>(CACHE_LIMIT);
   private readonly asyncRenderPipelines = new LruCache<Promise<GPURenderPipeline>>(CACHE_LIMIT);
   private readonly bindGroupLayouts = new Map<string, GPUBindGroupLayout>();
@@ -270,6 +271,35 @@ export class GpuCore {
       const forget = (): void => this.asyncComputePipelines.delete(key, made);
       made.catch(forget);
       noteCreated(this.device, { onFailure: forget });
+    }
+    return pipeline;
+  }
+
+  /**
+   * computePipelineAsync checked once in its own error scopes (runCompute): compiled off the
+   * device's queue, where a synchronous pipeline compiles on the queue itself, so every later
+   * submission (an input's first picture, on any widget of the page) waits for it. In Chrome
+   * on SwiftShader translucent-render's path-traced reference compiled for about 0.5 s
+   * right after the widget settled, and an input in that window waited for all of it
+   * (bench/firstPictureProbe.ts). A shader that does not compile is a validation GpuError
+   * with the compiler's messages, as inside a dispatch's scopes; later calls find the
+   * resolved promise and add no round trip; a failure is forgotten, so a later call retries.
+   */
+  checkedComputePipeline(
+    request: ComputePipelineRequest,
+    what: string,
+  ): Promise<GPUComputePipeline> {
+    const key = `${request.entryPoint}\n${layoutKey(request.layout)}\n${request.code}`;
+    let pipeline = this.checkedComputePipelines.get(key);
+    if (!pipeline) {
+      const made = withErrorScopes(this.device, what, () =>
+        this.computePipelineAsync(request),
+      ).catch((error: unknown) => {
+        this.checkedComputePipelines.delete(key, made);
+        throw pipelineFailure(error, what);
+      });
+      pipeline = made;
+      this.checkedComputePipelines.set(key, made);
     }
     return pipeline;
   }
@@ -488,4 +518,16 @@ export function gpuCore(device: GPUDevice): GpuCore {
     cores.set(device, core);
   }
   return core;
+}
+
+/**
+ * A rejected createComputePipelineAsync (a GPUPipelineError, reason "validation" or
+ * "internal") as the GpuError an error scope would have given; other errors unchanged.
+ */
+function pipelineFailure(error: unknown, what: string): unknown {
+  if (error instanceof GpuError || typeof error !== 'object' || error === null) return error;
+  const reason = (error as { reason?: unknown }).reason;
+  if (reason !== 'validation' && reason !== 'internal') return error;
+  const message = (error as { message?: unknown }).message;
+  return new GpuError(what, reason, typeof message === 'string' ? message : String(error));
 }
