@@ -9,7 +9,10 @@ export function drawPixels(
   width: number,
   height: number,
 ): void {
-  const context = canvas.getContext('2d');
+  // Rasterised on the CPU (willReadFrequently; the first getContext fixes it): drawn in
+  // Chromium's GPU process, the picture waited behind WebGPU's work there on a software
+  // adapter, and the widget's next pass behind it (see plot.ts, withCpuCanvases).
+  const context = canvas.getContext('2d', { willReadFrequently: true });
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const small = new OffscreenCanvas(width, height);
   small.getContext('2d')?.putImageData(new ImageData(pixels, width, height), 0, 0);

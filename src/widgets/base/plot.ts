@@ -45,9 +45,49 @@ export interface LinePlotOptions {
   yLog?: boolean;
 }
 
+/**
+ * Runs `make` (which creates canvases) with every 2D context asked for as
+ * `willReadFrequently`: a canvas rasterised on the CPU, in the page. uPlot takes its
+ * context when it is built and has no option for the attributes. Accelerated, Chromium
+ * rasterises the canvas in its GPU process, which also runs WebGPU: on a software adapter
+ * (SwiftShader) a plot's redraw there held the widget's next compute pass back by up to
+ * 350 ms (issue 23, chromatic-media, bench/firstPictureProbe.ts). On the CPU the few
+ * hundred segments of a plot take a millisecond or two.
+ */
+function withCpuCanvases<T>(make: () => T): T {
+  type GetContext = (
+    this: HTMLCanvasElement,
+    type: string,
+    attributes?: object,
+  ) => RenderingContext | GPUCanvasContext | null;
+  const prototype = HTMLCanvasElement.prototype;
+  const saved = prototype.getContext;
+  // getContext's overloads (one per context type) cannot be restated one by one here.
+  const original = saved as GetContext;
+  const patched: GetContext = function (type, attributes) {
+    return original.call(
+      this,
+      type,
+      type === '2d' ? { ...attributes, willReadFrequently: true } : attributes,
+    );
+  };
+  prototype.getContext = patched as typeof saved;
+  try {
+    return make();
+  } finally {
+    prototype.getContext = saved;
+  }
+}
+
 export class LinePlot {
   private plot: uPlot | null = null;
   private signature = '';
+  /**
+   * The legend's label of each series, as elements uPlot shows as they are: a label that
+   * changes (chromatic-media's fitted slope, after every pass) is rewritten in place
+   * instead of rebuilding the chart.
+   */
+  private labels: HTMLSpanElement[] = [];
   private readonly resizeObserver: ResizeObserver;
   private readonly themeObserver: MutationObserver;
   private lastData: { x: ArrayLike<number>; series: readonly PlotSeries[] } | null = null;
@@ -103,8 +143,14 @@ export class LinePlot {
       Array.from(values, (v) => (Number.isFinite(v) && (!this.options.yLog || v > 0) ? v : null));
     const data = [Array.from(x), ...series.map((s) => column(s.values))] as uPlot.AlignedData;
     const fontSize = this.fontSize();
-    const signature = `${fontSize};${series.map((s) => `${s.label}|${s.color}`).join(';')}`;
+    const signature = `${fontSize};${series
+      .map((s) => `${s.color}|${(s.dash ?? []).join(',')}|${s.spanGaps === true}`)
+      .join(';')}`;
     if (this.plot && signature === this.signature) {
+      series.forEach((s, i) => {
+        const label = this.labels[i];
+        if (label && label.textContent !== s.label) label.textContent = s.label;
+      });
       this.plot.setData(data);
       return;
     }
@@ -125,46 +171,55 @@ export class LinePlot {
       grid: { stroke: 'rgba(128,128,128,0.2)', width: 1 },
       ticks: { stroke: 'rgba(128,128,128,0.4)', width: 1 },
     });
-    this.plot = new uPlot(
-      {
-        width: this.width(),
-        height: this.height(),
-        scales: {
-          x: { time: false },
-          y: {
-            ...(this.options.yRange ? { range: this.options.yRange } : {}),
-            ...(this.options.yLog ? { distr: 3, log: 10 } : {}),
-          },
-        },
-        axes: [
-          axis(this.options.xLabel),
+    this.labels = series.map((s) => {
+      const label = document.createElement('span');
+      label.textContent = s.label;
+      return label;
+    });
+    this.plot = withCpuCanvases(
+      () =>
+        new uPlot(
           {
-            ...axis(this.options.yLabel),
-            ...(this.options.yLog
-              ? { values: (_: uPlot, splits: number[]) => splits.map(logTickLabel) }
-              : {}),
+            width: this.width(),
+            height: this.height(),
+            scales: {
+              x: { time: false },
+              y: {
+                ...(this.options.yRange ? { range: this.options.yRange } : {}),
+                ...(this.options.yLog ? { distr: 3, log: 10 } : {}),
+              },
+            },
+            axes: [
+              axis(this.options.xLabel),
+              {
+                ...axis(this.options.yLabel),
+                ...(this.options.yLog
+                  ? { values: (_: uPlot, splits: number[]) => splits.map(logTickLabel) }
+                  : {}),
+              },
+            ],
+            series: [
+              { label: this.options.xLabel },
+              ...series.map((s, i) => ({
+                label: this.labels[i]!,
+                stroke: s.color,
+                width: 2,
+                dash: s.dash ?? [],
+                ...(s.spanGaps ? { spanGaps: true } : {}),
+              })),
+            ],
+            cursor: { drag: { x: false, y: false } },
+            hooks: {
+              // The legend's values are those under the cursor: shown only while there is one.
+              setCursor: [
+                (u: uPlot) =>
+                  this.container.classList.toggle('sb-plot-hover', u.cursor.idx != null),
+              ],
+            },
           },
-        ],
-        series: [
-          { label: this.options.xLabel },
-          ...series.map((s) => ({
-            label: s.label,
-            stroke: s.color,
-            width: 2,
-            dash: s.dash ?? [],
-            ...(s.spanGaps ? { spanGaps: true } : {}),
-          })),
-        ],
-        cursor: { drag: { x: false, y: false } },
-        hooks: {
-          // The legend's values are those under the cursor: shown only while there is one.
-          setCursor: [
-            (u: uPlot) => this.container.classList.toggle('sb-plot-hover', u.cursor.idx != null),
-          ],
-        },
-      },
-      data,
-      this.container,
+          data,
+          this.container,
+        ),
     );
   }
 
