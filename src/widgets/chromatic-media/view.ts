@@ -234,14 +234,15 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
     s.nextStream += Math.ceil(spp / chunk);
     if (msPerSpp > 0) s.msPerSpp = msPerSpp;
     // The reference: one channel at a time, REFERENCE_FACTOR× the estimators' samples, its
-    // own streams, in passes of `spp` samples with an input checked between them (one pass
-    // of REFERENCE_FACTOR × spp took 60 ms on SwiftShader, and an input's picture waited
-    // for it). The preview's reference has as many samples as its estimators, not
+    // own streams, in passes of `chunk` samples (about ESTIMATOR_PASS_MS each) with an input
+    // checked between them: one pass of REFERENCE_FACTOR × spp took 60 ms on SwiftShader,
+    // and passes of `spp` still 35 ms, which an input's picture waited for
+    // (firstPictureProbe). The preview's reference has as many samples as its estimators, not
     // REFERENCE_FACTOR× (its 4 spp cost the first picture 29 ms); the next frame makes up
     // the difference, so every point of the error plot (from 2 samples on) has the ratio.
     const referenceTarget = (preview ? 1 : REFERENCE_FACTOR) * s.estimators.hero.samples;
     while (s.reference.samples < referenceTarget) {
-      const samples = Math.min(spp, referenceTarget - s.reference.samples);
+      const samples = Math.min(chunk, referenceTarget - s.reference.samples);
       const reference = await run(
         inputs,
         ESTIMATOR_INDEX.oneChannel,
