@@ -36,6 +36,8 @@ import {
   addRegularizerCpu,
   batchRays,
   lossAndGradientCpu,
+  PREVIEW_TARGET_STEPS,
+  problemCameras,
   problemFrom,
   renderTargetsCpu,
   type Hyper,
@@ -359,4 +361,25 @@ describe('the optimization (fixed seed): Adam lowers the loss tenfold', () => {
     expect(loss).toBeLessThan(start / 10);
     expect(iterations).toBeLessThan(100);
   }, 60_000);
+});
+
+describe('the targets preview (PREVIEW_TARGET_STEPS samples per ray)', () => {
+  it('is within 1/255 of the exact targets in every channel of every view', () => {
+    // The GPU's first picture of a new problem (issue 23): on an 8-bit display it must not
+    // look different from the exact targets that replace it.
+    const problem = problemFrom({ grid: 32, views: 12, steps: 64, seed: 0, novel: 60 }, 'gpu');
+    const cameras = problemCameras(problem);
+    const exact = renderTargetsCpu(problem, cameras);
+    const preview = renderTargetsCpu(problem, cameras, PREVIEW_TARGET_STEPS);
+    let largest = 0;
+    exact.forEach((value, i) => (largest = Math.max(largest, Math.abs(preview[i]! - value))));
+    expect(largest).toBeLessThan(1 / 255);
+    // The bound is not loose: half as many samples would be visibly different.
+    const coarser = renderTargetsCpu(problem, cameras, PREVIEW_TARGET_STEPS / 2);
+    let coarserLargest = 0;
+    exact.forEach(
+      (value, i) => (coarserLargest = Math.max(coarserLargest, Math.abs(coarser[i]! - value))),
+    );
+    expect(coarserLargest).toBeGreaterThan(1 / 255);
+  });
 });

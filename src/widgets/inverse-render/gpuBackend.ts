@@ -59,6 +59,8 @@ export class InverseTrainerGpu implements Trainer {
   private readonly targets: GPUBuffer;
   /** The preview targets' copy until read (renderPreviewTargets). */
   private previewTargets: GPUBuffer | null = null;
+  /** The exact targets wait for the preview's read-back (submitExactTargets). */
+  private exactTargetsPending = false;
   private readonly stats: GPUBuffer;
   private readonly image: GPUBuffer;
   private readonly cameras: GPUBuffer;
@@ -145,9 +147,25 @@ export class InverseTrainerGpu implements Trainer {
       'inverse-render setup',
       () => new InverseTrainerGpu(device, code, problem),
     );
-    if (options.previewSteps !== undefined) trainer.renderPreviewTargets(options.previewSteps);
-    trainer.renderTargets();
+    if (options.previewSteps === undefined) trainer.renderTargets();
+    else {
+      trainer.renderPreviewTargets(options.previewSteps);
+      trainer.exactTargetsPending = true;
+    }
     return trainer;
+  }
+
+  /**
+   * Submits the exact targets that create({ previewSteps }) held back, once. They go to the
+   * GPU after the preview has come back, not beside it: submitted together, the preview's
+   * read-back often came back only with the exact targets (SwiftShader's threads took both
+   * cores for their 169 ms dispatch, and the map's answer waited behind them: first picture
+   * 88–264 ms in bench/firstPictureProbe.ts).
+   */
+  private submitExactTargets(): void {
+    if (!this.exactTargetsPending) return;
+    this.exactTargetsPending = false;
+    this.renderTargets();
   }
 
   private renderTargets(): void {
@@ -161,11 +179,11 @@ export class InverseTrainerGpu implements Trainer {
 
   /**
    * The targets with `steps` samples per ray instead of TARGET_STEPS, copied into a buffer
-   * of their own in the same submission, before the exact targets are submitted: their
-   * read-back (readPreviewTargets) comes back while the GPU renders the exact ones. The
+   * of their own in the same submission, before the exact targets are submitted: they are
+   * drawn (readPreviewTargets) while the GPU renders the exact ones. The
    * exact targets of 12 views took 169 ms in one dispatch on SwiftShader, the first picture
-   * of a new problem waited for them (issue 23), and 48 of 192 midpoint samples of the
-   * smooth hidden volume look the same at 32² pixels.
+   * of a new problem waited for them (issue 23), and PREVIEW_TARGET_STEPS of 192 midpoint
+   * samples of the smooth hidden volume look the same at 32² pixels (model.ts).
    */
   private renderPreviewTargets(steps: number): void {
     this.writeParams(
@@ -196,6 +214,8 @@ export class InverseTrainerGpu implements Trainer {
       return new Float32Array(copy.getMappedRange().slice(0));
     } finally {
       copy.destroy();
+      // Also when the map failed: readTargets must find the exact targets on their way.
+      this.submitExactTargets();
     }
   }
 
@@ -296,6 +316,7 @@ export class InverseTrainerGpu implements Trainer {
 
   /** The target images of every view (3 floats per pixel, views in order). */
   async readTargets(): Promise<Float32Array> {
+    this.submitExactTargets();
     return new Float32Array(await this.read(this.targets, 12 * this.allPixels));
   }
 

@@ -43,8 +43,13 @@ export const NOVEL_ELEVATION = 0.75;
 export const FIRST_AZIMUTH = 0.35;
 /** Midpoint samples per ray of the target images (a converged render of the hidden volume). */
 export const TARGET_STEPS = 192;
-/** Samples per ray of the targets' preview (the first picture of a new problem on the GPU). */
-export const PREVIEW_TARGET_STEPS = 48;
+/**
+ * Samples per ray of the targets' preview (the first picture of a new problem on the GPU):
+ * within 1/255 of the exact targets everywhere (tests/reference/inverse.test.ts), so the
+ * preview looks the same on an 8-bit display. 48 cost the first picture 70–85 ms on
+ * SwiftShader (issue 23).
+ */
+export const PREVIEW_TARGET_STEPS = 24;
 /** Background radiance behind the box, per channel. */
 export const BACKGROUND: Vec3 = [0.26, 0.28, 0.34];
 /** Initial raw density: σt = 10·softplus(−5) = 0.067 m⁻¹, an almost empty box (τ ≈ 0.13 across). */
@@ -257,12 +262,14 @@ function pixelRay(camera: Camera, x: number, y: number): { origin: Vec3; directi
 
 /**
  * The target images of every view (training views, then the held-out one) from the
- * hidden volume, marched with TARGET_STEPS midpoint samples: 3 numbers per pixel,
- * views one after the other, rows from the top. Twin of the kernel's renderTarget.
+ * hidden volume, marched with `steps` (TARGET_STEPS, or the preview's) midpoint samples:
+ * 3 numbers per pixel, views one after the other, rows from the top. Twin of the
+ * kernel's renderTarget.
  */
 export function renderTargetsCpu(
   problem: Problem,
   cameras = problemCameras(problem),
+  steps = TARGET_STEPS,
 ): Float64Array {
   const pixels = problem.size * problem.size;
   const out = new Float64Array(3 * pixels * cameras.length);
@@ -270,7 +277,7 @@ export function renderTargetsCpu(
     for (let y = 0; y < problem.size; y++)
       for (let x = 0; x < problem.size; x++) {
         const { origin, direction } = pixelRay(camera, x, y);
-        const segment = marchSegment(BOX_MIN, BOX_MAX, origin, direction, TARGET_STEPS);
+        const segment = marchSegment(BOX_MIN, BOX_MAX, origin, direction, steps);
         let state: Vec4 = [0, 0, 0, 1];
         for (let k = 0; k < segment.count; k++) {
           const t = segment.start + (k + 0.5) * segment.step;
