@@ -181,6 +181,12 @@ export interface BatchOptions {
   signal?: AbortSignal;
   /** The whole image in one dispatch (a preview: bands would add a read-back each). */
   whole?: boolean;
+  /**
+   * GPU time a band may take (ms; default GATHER_BAND_BUDGET_MS). Background accumulation
+   * that an input may interrupt asks for less: the input's picture waits for the bands in
+   * flight.
+   */
+  bandBudgetMs?: number;
 }
 
 /** The GPU time of an image kernel's last batch, per sample: sizes the next one's bands. */
@@ -222,7 +228,7 @@ export async function imageBatchInBands(
     0,
     size,
     {
-      budgetMs: GATHER_BAND_BUDGET_MS,
+      budgetMs: options.bandBudgetMs ?? GATHER_BAND_BUDGET_MS,
       firstRows: FIRST_BAND_ROWS,
       inFlight: GATHER_BANDS_IN_FLIGHT,
       msPerRow: estimate.msPerRowSample === null ? null : estimate.msPerRowSample * samples,

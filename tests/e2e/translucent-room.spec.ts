@@ -54,7 +54,7 @@ test('both pictures accumulate with times and the dipole error; black walls leav
   await expect.poll(() => widget.getAttribute('data-stage')).toBe('full');
   const stages = await stagesShown();
   // At half the side (a 16² picture previews at 8²).
-  expect(stages[0]).toMatch(/^Preview: pass 1 with 256 × 16, 1 sample per pixel at 8² pixels$/);
+  expect(stages[0]).toMatch(/^Preview: pass 1 with 256 × 8, 1 sample per pixel at 8² pixels$/);
   expect(stages.at(-1)).toBe('full');
   await expect(widget.locator('.sb-cost')).toContainText('1024 irradiance samples × 64 rays');
   await expect.poll(() => page.url()).toContain('walls=black');

@@ -38,10 +38,12 @@ export const IRRADIANCE = {
 /**
  * Pass 1 of the first picture after an input on WebGPU (issue 23, a preview within the
  * first-picture budget): a quarter of the samples (about 1.1 mm apart on the default
- * sphere) with a quarter of the rays each, so the dipole picture is a coarser quadrature
- * of the same integral. The next frame runs the full pass and restarts the dipole picture on it.
+ * sphere) with an eighth of the rays each, so the dipole picture is a coarser, noisier
+ * quadrature of the same integral. The next frame runs the full pass and restarts the
+ * dipole picture on it. 16 rays took 44–48 ms on SwiftShader (bench/firstPictureProbe.ts),
+ * half of the first-picture budget by itself.
  */
-export const IRRADIANCE_PREVIEW = { samples: 256, rays: 16 } as const;
+export const IRRADIANCE_PREVIEW = { samples: 256, rays: 8 } as const;
 /**
  * Pass 1 runs once: its paths see the sphere only as a mirror, so light that leaves the sphere,
  * bounces off a wall and comes back is left out. A second pass fed with the first's samples adds
