@@ -12,7 +12,9 @@
 // the worker when the input came, and what the first picture waited for; then when the
 // page's next animation frame came (the picture is on screen with that frame).
 // With --stacks, each submit and read-back names its callers (build with --minify false).
-//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks]
+// With --profile, the page's main thread is sampled (CDP Profiler, 0.2 ms) from just before
+// the input to the first picture, and the functions that took the most time are printed.
+//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks] [--profile]
 import { chromium } from 'playwright-core';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
@@ -117,6 +119,38 @@ const WRAP = `((stacks) => {
   } catch (error) { /* no long-task timing */ }
 })`;
 
+interface CpuProfile {
+  nodes: {
+    id: number;
+    callFrame: { functionName: string; url: string; lineNumber: number };
+    children?: number[];
+  }[];
+  samples?: number[];
+  timeDeltas?: number[];
+}
+
+/**
+ * The main thread's time from the input to the first picture (plus the 300 ms the page
+ * waits after it), by function (self time, ms), idle and garbage collection included, so
+ * that what the page did while the picture waited shows.
+ */
+function printProfile(profile: CpuProfile): void {
+  const byId = new Map(profile.nodes.map((node) => [node.id, node]));
+  const self = new Map<string, number>();
+  const samples = profile.samples ?? [];
+  const deltas = profile.timeDeltas ?? [];
+  samples.forEach((id, i) => {
+    const frame = byId.get(id)?.callFrame;
+    const name = frame
+      ? `${frame.functionName || '(anonymous)'} ${frame.url.replace(/^.*\//, '')}:${frame.lineNumber + 1}`
+      : '?';
+    self.set(name, (self.get(name) ?? 0) + (deltas[i + 1] ?? 0) / 1000);
+  });
+  console.log('  main thread, self time (ms), input to 300 ms after the first picture:');
+  for (const [name, ms] of [...self.entries()].sort((a, b) => b[1] - a[1]).slice(0, 25))
+    console.log(`    ${ms.toFixed(1).padStart(7)}  ${name}`);
+}
+
 function option(name: string, fallback?: string): string {
   const found = process.argv.find((arg) => arg.startsWith(`--${name}=`));
   const value = found?.slice(name.length + 3) ?? fallback;
@@ -195,6 +229,13 @@ try {
     return { control: control.name, value: next, t0, firstMs: t1 - t0, frameMs: t2 - t0,
       stage, log };
   }`;
+  const profiling = process.argv.includes('--profile');
+  const cdp = profiling ? await context.newCDPSession(page) : null;
+  if (cdp) {
+    await cdp.send('Profiler.enable');
+    await cdp.send('Profiler.setSamplingInterval', { interval: 200 });
+    await cdp.send('Profiler.start');
+  }
   const result = (await page.evaluate(`(${INPUT})(${JSON.stringify({ tag, next })})`)) as {
     control: string;
     value: number;
@@ -207,6 +248,7 @@ try {
   console.log(
     `${widget} (${backend}): ${result.control} → ${result.value}: first picture ${result.firstMs.toFixed(0)} ms (${result.stage}), next animation frame at ${result.frameMs.toFixed(0)} ms`,
   );
+  if (cdp) printProfile((await cdp.send('Profiler.stop')).profile);
   for (const entry of result.log) {
     const start = (entry['start'] as number) - result.t0;
     const end = entry['end'] === null ? null : (entry['end'] as number) - result.t0;

@@ -22,8 +22,10 @@
 // The change alternates between 60 % of the slider's range and its initial value;
 // medians over `repeats` changes (fewer where a widget's changes take long; the row
 // says how many). A widget that fails or times out gets a row saying so.
+// With --samples, each widget's first-picture times are also printed one by one (in order,
+// to stderr): on a shared 2-core machine a median of 9 moves by ±15 ms from run to run.
 //   npx tsx bench/interaction.ts --dist=DIR [--repeats=N] [--backend=gpu|cpu|both]
-//     [--only-widgets=a,b]          (or npm run bench -- --only=interaction --dist=DIR)
+//     [--only-widgets=a,b] [--samples]  (or npm run bench -- --only=interaction --dist=DIR)
 import { existsSync } from 'node:fs';
 import { loadavg } from 'node:os';
 import { fileURLToPath } from 'node:url';
@@ -437,6 +439,10 @@ async function measureWidget(
           'WebGPU is not available',
         ),
       ));
+    if (process.argv.includes('--samples'))
+      console.error(
+        `${name}: first picture ms ${samples.map((s) => s.firstMs.toFixed(0)).join(' ')}`,
+      );
     return {
       adapter,
       settledBy: loaded.settledBy,
