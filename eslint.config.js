@@ -39,6 +39,22 @@ export default tseslint.config(
     },
   },
   {
+    // Shipped code takes 2D contexts through context2d (src/widgets/base/canvas2d.ts):
+    // rasterised on the CPU, not in the GPU process beside WebGPU (issue 23).
+    files: ['src/**'],
+    ignores: ['src/cli/**', 'src/book/build/**'],
+    rules: {
+      'no-restricted-syntax': [
+        'error',
+        {
+          selector: "CallExpression[callee.property.name='getContext'][arguments.0.value='2d']",
+          message:
+            'Take a 2D context with context2d() from src/widgets/base/canvas2d.ts (CPU-rasterised).',
+        },
+      ],
+    },
+  },
+  {
     // Command-line entry points, benchmarks and build scripts print to the terminal.
     files: ['src/cli/**', 'bench/**', 'scripts/**', 'src/book/build/**'],
     rules: { 'no-console': 'off' },

@@ -19,6 +19,7 @@ import type {
   WidgetView,
 } from './view.ts';
 import { WidgetElement } from './widgetElement.ts';
+import { context2d } from './canvas2d.ts';
 
 /**
  * How long a disconnected widget waits before it releases its resources. A move is a
@@ -47,7 +48,7 @@ class Canvas implements ManagedCanvas {
    * null), so the CPU path gets a fresh one in its place, keeping its description.
    */
   replaceIfWebGpu(): void {
-    if (this.element.getContext('2d') !== null) return;
+    if (context2d(this.element) !== null) return;
     const fresh = this.create();
     const label = this.element.getAttribute('aria-label');
     if (label !== null) fresh.setAttribute('aria-label', label);

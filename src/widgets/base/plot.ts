@@ -46,13 +46,9 @@ export interface LinePlotOptions {
 }
 
 /**
- * Runs `make` (which creates canvases) with every 2D context asked for as
- * `willReadFrequently`: a canvas rasterised on the CPU, in the page. uPlot takes its
- * context when it is built and has no option for the attributes. Accelerated, Chromium
- * rasterises the canvas in its GPU process, which also runs WebGPU: on a software adapter
- * (SwiftShader) a plot's redraw there held the widget's next compute pass back by up to
- * 350 ms (issue 23, chromatic-media, bench/firstPictureProbe.ts). On the CPU the few
- * hundred segments of a plot take a millisecond or two.
+ * Runs `make` (which creates canvases) with every 2D context asked for as context2d asks
+ * (canvas2d.ts: rasterised on the CPU, not in the GPU process beside WebGPU). uPlot takes
+ * its context when it is built and has no option for the attributes.
  */
 function withCpuCanvases<T>(make: () => T): T {
   type GetContext = (

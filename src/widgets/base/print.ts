@@ -12,6 +12,7 @@
 // prints (to PDF too) and lays the page out at once, and an <img> given a new data:
 // URL in beforeprint is decoded asynchronously, so it printed as an empty box; a 2D
 // canvas holds its pixels as soon as drawImage returns.
+import { context2d } from './canvas2d.ts';
 
 const redraws = new WeakMap<HTMLCanvasElement, () => void>();
 
@@ -52,7 +53,7 @@ export function snapshotCanvases(root: ParentNode): number {
       // Resizing clears the copy; the re-draw and the copy then happen in this task.
       copy.width = canvas.width;
       copy.height = canvas.height;
-      const context = copy.getContext('2d');
+      const context = context2d(copy);
       if (!context) throw new Error('no 2D context for the print copy');
       redraw?.();
       context.drawImage(canvas, 0, 0);

@@ -17,6 +17,7 @@ import {
   type ProfileCurves,
   type ProfileInputs,
 } from './model.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /** Side of the disc picture drawn by the CPU (the GPU draws DISC_SIZE). */
 export const CPU_DISC_SIZE = 160;
@@ -94,7 +95,7 @@ export function discPixelsCpu(inputs: DiscInputs, size = CPU_DISC_SIZE): DiscPix
 export function paintDiscPixels(canvas: HTMLCanvasElement, disc: DiscPixels): void {
   canvas.width = disc.size;
   canvas.height = disc.size;
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) return;
   context.putImageData(new ImageData(disc.pixels, disc.size, disc.size), 0, 0);
 }

@@ -10,6 +10,7 @@ import type {
   SourceDiagnostic,
 } from '../../grading/types.ts';
 import { LinePlot } from '../base/plot.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /** Okabe–Ito colours, as the other widgets use: distinguishable with colour-vision deficiency. */
 const STUDENT_COLOR = '#d55e00';
@@ -231,7 +232,7 @@ function barChart(
     'aria-label',
     `Histogram of ${xLabel} over ${observed.length} bins from ${lo} to ${hi}: filled bars are your samples, outlined bars the counts the analytic density predicts (height = count ÷ bin width).`,
   );
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) return canvas;
   const density = (counts: readonly number[], i: number): number => {
     const w = (edges[i + 1] ?? 0) - (edges[i] ?? 0);
@@ -287,7 +288,7 @@ function imageTriptych(
     canvas.height = height;
     canvas.setAttribute('role', 'img');
     canvas.setAttribute('aria-label', label);
-    const context = canvas.getContext('2d');
+    const context = context2d(canvas);
     if (context) {
       const data = context.createImageData(width, height);
       for (let i = 0; i < width * height; i++) {

@@ -13,6 +13,7 @@ import {
   type HgLobeInputs,
   type PolarLayout,
 } from './model.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /**
  * The kernel's sampling pass in float64: sample i takes ξ from the stream
@@ -198,12 +199,10 @@ export function paintPolar(
   canvas: HTMLCanvasElement,
   image: { pixels: Uint8ClampedArray<ArrayBuffer>; width: number; height: number },
 ): void {
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const small = new OffscreenCanvas(image.width, image.height);
-  small
-    .getContext('2d')
-    ?.putImageData(new ImageData(image.pixels, image.width, image.height), 0, 0);
+  context2d(small)?.putImageData(new ImageData(image.pixels, image.width, image.height), 0, 0);
   context.imageSmoothingEnabled = true;
   context.drawImage(small, 0, 0, canvas.width, canvas.height);
 }

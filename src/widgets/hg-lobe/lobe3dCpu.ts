@@ -20,6 +20,7 @@ import {
   type Vec3,
 } from './lobe3d.ts';
 import type { HgLobeInputs } from './model.ts';
+import { context2d, type Context2D } from '../base/canvas2d.ts';
 
 /** The GPU picture's background (display-encoded 0.148, 0.169, 0.218). */
 const BACKGROUND = 'rgb(38, 43, 56)';
@@ -28,11 +29,6 @@ const COMPARE_COLOUR = [115, 166, 255] as const;
 const BEAM_COLOUR = 'rgb(240, 226, 190)';
 
 /** The 2D context of a canvas in the page or of an OffscreenCanvas in a worker. */
-type Context2D = CanvasRenderingContext2D | OffscreenCanvasRenderingContext2D;
-
-/** An OffscreenCanvas (a worker has no HTMLCanvasElement to test against). */
-const isOffscreen = (canvas: HTMLCanvasElement | OffscreenCanvas): canvas is OffscreenCanvas =>
-  typeof OffscreenCanvas !== 'undefined' && canvas instanceof OffscreenCanvas;
 
 interface Segment {
   a: SurfacePoint;
@@ -136,16 +132,13 @@ export function drawLobeWireframe(
   orbit: Orbit,
   scale: number,
 ): void {
-  // A canvas rasterised on the CPU, in the page (willReadFrequently asks for one; the
-  // first getContext call fixes it for the canvas's life). Accelerated, Chromium hands
+  // A canvas rasterised on the CPU, in the page (context2d). Accelerated, Chromium hands
   // the few thousand round-capped, semi-transparent segments to its GPU process; on a
   // software adapter (SwiftShader) that took 0.6–2.7 s per wireframe, during which the
   // page produced no animation frame at all, so every other picture of the widget
   // waited too (issue 23: hg-lobe's CPU first picture 1.0–2.1 s, 150–230 ms without).
   // The same holds for an OffscreenCanvas in a worker: rasterised in the worker.
-  const context: Context2D | null = isOffscreen(canvas)
-    ? canvas.getContext('2d', { willReadFrequently: true })
-    : canvas.getContext('2d', { willReadFrequently: true });
+  const context = context2d(canvas);
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const bounds = sceneBounds(inputs, logFloor);
   const camera = orbitCamera(bounds, orbit, canvas.width / canvas.height);

@@ -6,6 +6,7 @@
 import { interpolate, type Rgb } from '../base/imagePanel.ts';
 import { CpuTrainingSession, type CpuRequest, type CpuResponse } from './cpuTraining.ts';
 import type { Hyper, Problem, TrainReport, Trainer, ViewAngle } from './model.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 type Pending = (response: CpuResponse) => void;
 
@@ -126,7 +127,7 @@ export function paintView(
     canvas.width = size;
     canvas.height = size;
   }
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const pixels = context.createImageData(size, size);
   const offset = 3 * view * size * size;
@@ -163,7 +164,7 @@ export function paintError(
     canvas.width = size;
     canvas.height = size;
   }
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const pixels = context.createImageData(size, size);
   const offset = 3 * view * size * size;

@@ -12,6 +12,7 @@ import type { jobs } from './jobs.ts';
 import { MieLobeGpu } from './gpuBackend.ts';
 import { inputsFrom, plotAngles } from './model.ts';
 import type { MieLobeFrame } from './widget.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /** Decades of p the polar picture spans below the lobe's peak. */
 const POLAR_DECADES = 6;
@@ -28,7 +29,7 @@ function drawPolar(
   degrees: Float64Array,
   curves: readonly { values: ArrayLike<number>; color: string; dash: number[] }[],
 ): void {
-  const ctx = canvas.getContext('2d');
+  const ctx = context2d(canvas);
   if (!ctx) return;
   const { width, height } = canvas;
   const dark = matchMedia('(prefers-color-scheme: dark)').matches;

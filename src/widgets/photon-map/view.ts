@@ -36,6 +36,7 @@ import type { jobs } from './jobs.ts';
 import { summariseSweep } from './summary.ts';
 import { workerJobs } from '../../workers/compute.ts';
 import { CPU_MAX_PHOTONS, SWEEP_ROWS, type PhotonFrame, type PhotonImages } from './widget.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 const VIEW_SIZE = { width: 256, height: 192 } as const;
 const VIEW_PHOTONS = 16384;
@@ -454,7 +455,7 @@ function paintGrey(
 ): void {
   canvas.width = width;
   canvas.height = height;
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) return;
   const data = context.createImageData(width, height);
   for (let i = 0; i < width * height; i++) {
@@ -466,7 +467,7 @@ function paintGrey(
 
 /** Stored photons as dots, projected with the widget's pinhole camera. */
 function paintPhotons(canvas: HTMLCanvasElement, view: Float32Array): void {
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) return;
   const { width, height } = canvas;
   context.fillStyle = '#000';

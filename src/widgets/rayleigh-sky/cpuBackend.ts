@@ -15,6 +15,7 @@ import {
   type Rgb,
   type SkyInputs,
 } from './model.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 function smoothstep(edge0: number, edge1: number, x: number): number {
   const t = Math.min(Math.max((x - edge0) / (edge1 - edge0), 0), 1);
@@ -104,7 +105,7 @@ export function paintSky(
 ): void {
   if (canvas.width !== width) canvas.width = width;
   if (canvas.height !== height) canvas.height = height;
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   context.putImageData(new ImageData(pixels, width, height), 0, 0);
 }

@@ -14,6 +14,7 @@ import {
   type MarchImage,
   type MarchInputs,
 } from './model.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /** Paints width × height colours into a canvas, scaled to the canvas's size. */
 export function paintImage(
@@ -22,7 +23,7 @@ export function paintImage(
   height: number,
   colourAt: (index: number) => [number, number, number],
 ): void {
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const image = context.createImageData(width, height);
   for (let index = 0; index < width * height; index++) {
@@ -35,7 +36,7 @@ export function paintImage(
     return;
   }
   const small = new OffscreenCanvas(width, height);
-  small.getContext('2d')?.putImageData(image, 0, 0);
+  context2d(small)?.putImageData(image, 0, 0);
   // Nearest neighbour: the fallback's pixels stay visible as pixels.
   context.imageSmoothingEnabled = false;
   context.drawImage(small, 0, 0, canvas.width, canvas.height);

@@ -54,6 +54,7 @@ import {
   type SingleScatterInputs,
 } from './model.ts';
 import { TIMING_REPEATS, type KernelTimes, type SingleScatterFrame } from './widget.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /** Time to spend per animation frame (ms): the pass size adapts to it. */
 const GPU_FRAME_BUDGET_MS = 12;
@@ -337,9 +338,11 @@ export function createView(
     const { width, height } = current;
     const image: ImageAccumulator = await accumulation.readImage();
     const rgba = toneMapRgba8(width, height, image.mean(), DISPLAY_EXPOSURE);
-    imageElement
-      .getContext('2d')
-      ?.putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
+    context2d(imageElement)?.putImageData(
+      new ImageData(new Uint8ClampedArray(rgba), width, height),
+      0,
+      0,
+    );
     // Standard error per pixel: the mean over the three channels, on a rounded scale.
     const standardError = image.standardError();
     const errorImage = new ImageData(width, height);
@@ -348,7 +351,7 @@ export function createView(
       const [r, g, b] = errorColour((Number.isFinite(e) ? e : 0) / scale);
       errorImage.data.set([r, g, b, 255], 4 * i);
     }
-    errorElement.getContext('2d')?.putImageData(errorImage, 0, 0);
+    context2d(errorElement)?.putImageData(errorImage, 0, 0);
   };
 
   /** Paints the run and gathers the frame (null: the run was replaced meanwhile). */

@@ -9,6 +9,7 @@ import { abortError, runInBands } from '../../gpu/bands.ts';
 import type { VolumeRendererGpu } from './gpuBackend.ts';
 import { rowsScene, type jobs as rowJobs, type RowsBand } from './jobs.ts';
 import { CPU_SIZE, emptyImage, IMAGE_SIZE, type FrameInputs, type VolumeImage } from './model.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 export interface RowsCost {
   milliseconds: number;
@@ -303,7 +304,7 @@ export function paintImage(
   size: number,
   colourAt: (index: number) => Rgb,
 ): void {
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) throw new Error('this browser cannot draw on a 2D canvas');
   const image = context.createImageData(size, size);
   for (let index = 0; index < size * size; index++) {
@@ -316,7 +317,7 @@ export function paintImage(
     return;
   }
   const small = new OffscreenCanvas(size, size);
-  small.getContext('2d')?.putImageData(image, 0, 0);
+  context2d(small)?.putImageData(image, 0, 0);
   context.imageSmoothingEnabled = false;
   context.drawImage(small, 0, 0, canvas.width, canvas.height);
 }

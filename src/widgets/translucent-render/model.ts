@@ -8,6 +8,7 @@ import {
   type TranslucentScene,
 } from '../../subsurface/translucent.ts';
 import { TRANSLUCENT_RENDER } from './schema.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 export const TRANSLUCENT_DEFAULTS: ParameterValues = Object.fromEntries(
   TRANSLUCENT_RENDER.parameters.map((p) => [p.name, p.default]),
@@ -56,7 +57,7 @@ export function paintImage(
 ): void {
   canvas.width = size;
   canvas.height = size;
-  const context = canvas.getContext('2d');
+  const context = context2d(canvas);
   if (!context) return;
   const data = context.createImageData(size, size);
   for (let p = 0; p < size * size; p++) {

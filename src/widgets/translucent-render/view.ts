@@ -41,6 +41,7 @@ import {
   type NoisyReferenceError,
 } from './model.ts';
 import type { TranslucentFrame } from './widget.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /**
  * A progressive step of the path tracer aims at this much GPU time (at least one sample
@@ -223,7 +224,7 @@ export function createView(
       reference.accumulator.samples === 0 ||
       reference.accumulator.pixels !== scene.size * scene.size
     ) {
-      const blank = target.getContext('2d');
+      const blank = context2d(target);
       if (blank) {
         target.width = scene.size;
         target.height = scene.size;

@@ -45,6 +45,7 @@ import {
   type ReferenceErrors,
   type VolumePathTracerFrame,
 } from './widget.ts';
+import { context2d } from '../base/canvas2d.ts';
 
 /** A frozen copy of an image, and its error once the reference is there. */
 interface Snapshot {
@@ -439,7 +440,7 @@ export function createView(
     }
     const canvas = canvasForContext(existing, '2d');
     canvases[order] = canvas;
-    const drawing = canvas.getContext('2d');
+    const drawing = context2d(canvas);
     if (!drawing) return;
     const { width, height } = current.budget;
     const mean = (await accumulation.readImage()).mean();
