@@ -79,7 +79,8 @@ export class TranslucentKernels {
    * most GATHER_BANDS_IN_FLIGHT submitted at once. The GPU runs a dispatch to its end, so
    * a whole 64² gather in one (≈ 380 ms on SwiftShader; the exact sum more) held the
    * picture of the next input behind it (issue 23). `signal`, checked before each band,
-   * rejects with an AbortError.
+   * rejects with an AbortError. `whole`: the image in one dispatch (a small preview, where
+   * each band would add a read-back round trip to the first picture).
    */
   async gather(
     scene: TranslucentScene,
@@ -87,6 +88,7 @@ export class TranslucentKernels {
     epsilon: number,
     packed?: { nodes: Uint32Array; samples: Uint32Array },
     signal?: AbortSignal,
+    whole = false,
   ): Promise<GatherImage> {
     const code = await linkLibraryKernel(this.library, 'kernels/translucent-gather.wesl');
     if (this.packedFor !== octree || !this.packed) {
@@ -107,6 +109,7 @@ export class TranslucentKernels {
         firstRows: GATHER_FIRST_BAND_ROWS,
         inFlight: GATHER_BANDS_IN_FLIGHT,
         ...(signal ? { signal } : {}),
+        ...(whole ? { fixedRows: size } : {}),
       },
       async ({ start, rows }) => {
         const result = await runCompute(this.device, {

@@ -128,6 +128,10 @@ describe('translucent kernels on the GPU (Dawn)', () => {
       if (differing > 1) wrongRows += 1;
     }
     expect(wrongRows).toBe(0);
+    // In one dispatch (a preview's `whole`): the same image, bit for bit.
+    const whole = await kernels.gather(s, octree, 0.1, undefined, undefined, true);
+    expect(Array.from(whole.image)).toEqual(Array.from(gpu.image));
+    expect(Array.from(whole.visited)).toEqual(Array.from(gpu.visited));
     const controller = new AbortController();
     controller.abort();
     await expect(

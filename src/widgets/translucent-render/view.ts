@@ -51,6 +51,13 @@ import { context2d } from '../base/canvas2d.ts';
 const STEP_BUDGET_MS = 40;
 /** Largest image side the CPU fallback draws. */
 const CPU_SIZE = 40;
+/**
+ * Irradiance samples of a GPU preview's octree when the scene's own is not built yet: the
+ * default 4096 took 36–47 ms in the worker, and the first picture after an input waited
+ * for it (issue 23, bench/firstPictureProbe.ts). A preview is 16² pixels, where a quarter
+ * of the samples (twice their spacing) is still finer than a pixel on the default sphere.
+ */
+const PREVIEW_OCTREE_SAMPLES = 1024;
 
 /**
  * Pass 1 (samples, octree, packing) on both backends and the CPU fallback's pictures,
@@ -587,9 +594,23 @@ export function createView(
     const ladder = ladderFor(onCpu ? 'cpu' : 'gpu', shown.size);
     const choice = ladder.pick(request);
     shown.size = choice.rung.value;
-    const state = await octreeFor(shown, sampleCountOf(context.values), request.signal);
+    const count = sampleCountOf(context.values);
+    // A GPU preview of a scene whose octree is still to be built takes a smaller one;
+    // one already built (an input of ε, size or exposure) is used as it is.
+    const preview =
+      !onCpu && !choice.final && count > PREVIEW_OCTREE_SAMPLES && !octreeReady(shown, count);
+    const state = await octreeFor(shown, preview ? PREVIEW_OCTREE_SAMPLES : count, request.signal);
     if (choice.final) scene = shown;
     return { shown, state, ladder, choice };
+  };
+
+  /** Whether the octree of `count` samples for this scene is built (here or in the worker's cache). */
+  const octreeReady = (forScene: TranslucentScene, count: number): boolean => {
+    const args: [ReturnType<typeof sampleSceneOf>, number] = [sampleSceneOf(forScene), count];
+    return (
+      octreeState?.key === JSON.stringify(args) ||
+      translucentJobs.cached('octree', args) !== undefined
+    );
   };
 
   /** A preview's pictures: painted (pixelated), nothing else touched; the readouts say it is one. */
@@ -604,6 +625,13 @@ export function createView(
     paintImage(canvases[0].element, drawn.diffuse, shown.size, exposure);
     paintImage(canvases[1].element, drawn.gather.image, shown.size, exposure);
     for (const key of ['diffuse-error', 'gather-error']) set(key, 'after the preview…');
+    // The stage line says when the preview's octree has fewer samples than asked for.
+    const asked = sampleCountOf(context.values);
+    const used = state.octree.samples.count;
+    const stage =
+      refinement && used < asked
+        ? { ...refinement, label: `${refinement.label}, ${used} of ${asked} irradiance samples` }
+        : refinement;
     return {
       ...frame,
       size: shown.size,
@@ -614,7 +642,7 @@ export function createView(
       },
       meanVisited: meanVisitedOf(shown, drawn),
       exact: null,
-      refinement,
+      ...(stage ? { refinement: stage } : {}),
     };
   };
 
@@ -711,14 +739,13 @@ export function createView(
       const { shown, state, ladder, choice } = await prepare(false, request);
       const epsilon = epsilonOf(context.values);
       const start = performance.now();
-      const diffuse = await renderer.diffuse(shown);
-      const gather = await renderer.gather(
-        shown,
-        state.octree,
-        epsilon,
-        state.packed,
-        request.signal,
-      );
+      // Both pictures submitted together (one read-back wait, not two); a preview's gather
+      // in one dispatch: its 16² pixels are a few ms of GPU time, and bands would add a
+      // read-back round trip each to the first picture (issue 23).
+      const [diffuse, gather] = await Promise.all([
+        renderer.diffuse(shown),
+        renderer.gather(shown, state.octree, epsilon, state.packed, request.signal, !choice.final),
+      ]);
       ladder.record(choice.index, performance.now() - start);
       if (!choice.final)
         return finishPreview(
