@@ -32,6 +32,13 @@ export interface PathBatch {
 
 /** GPU time one band of a gather may take (ms); see gather and bands.ts. */
 export const GATHER_BAND_BUDGET_MS = 20;
+/**
+ * GPU time of a band of background accumulation that an input may interrupt (a path-traced
+ * reference, a progressive picture): the input's picture waits for the bands in flight,
+ * and two of GATHER_BAND_BUDGET_MS held it back 40–120 ms on SwiftShader (translucent-room,
+ * bench/firstPictureProbe.ts). BatchOptions.bandBudgetMs asks for it.
+ */
+export const BACKGROUND_BAND_BUDGET_MS = 8;
 /** Bands of a gather submitted before the first is read back (hides the read-back's latency). */
 export const GATHER_BANDS_IN_FLIGHT = 2;
 /** Rows of a gather's first bands, before its cost per row is known. */

@@ -15,7 +15,11 @@ import {
   type OctreeNode,
   type TranslucentScene,
 } from '../../subsurface/translucent.ts';
-import { PathAccumulator, TranslucentKernels } from '../../subsurface/translucentKernels.ts';
+import {
+  BACKGROUND_BAND_BUDGET_MS,
+  PathAccumulator,
+  TranslucentKernels,
+} from '../../subsurface/translucentKernels.ts';
 import type { Backend } from '../base/backend.ts';
 import { formatMilliseconds, formatNumber } from '../base/format.ts';
 import { imageFigure, imagePanel } from '../base/imagePanel.ts';
@@ -317,6 +321,7 @@ export function createView(
           offset: job.accumulator.samples,
           seed: Number(context.values['seed']),
           signal: input,
+          bandBudgetMs: BACKGROUND_BAND_BUDGET_MS,
         });
         // A step that an input overtook is still this reference's: kept.
         if (!alive()) return;

@@ -7,7 +7,11 @@
 // are widget.ts's.
 import type { GpuContext } from '../../gpu/device.ts';
 import { STATIC_KERNELS } from '../../gpu/staticKernels.ts';
-import { PathAccumulator, type PathBatch } from '../../subsurface/translucentKernels.ts';
+import {
+  BACKGROUND_BAND_BUDGET_MS,
+  PathAccumulator,
+  type PathBatch,
+} from '../../subsurface/translucentKernels.ts';
 import { indirectShare, sphereMask, type RoomScene } from '../../subsurface/translucentRoom.ts';
 import { RoomKernels } from '../../subsurface/translucentRoomKernels.ts';
 import { workerJobs } from '../../workers/compute.ts';
@@ -34,12 +38,6 @@ import type { RoomFrame } from './widget.ts';
  * gave a first picture of 209–220 ms after a radius change, 25 ms 123–200, two runs each).
  */
 const STEP_BUDGET_MS = 25;
-/**
- * GPU time of one band of a progressive step (two are in flight): an input's picture waits
- * for the bands in flight, which at 20 ms each (the default) cost the first picture 40–120
- * ms on SwiftShader (bench/firstPictureProbe.ts).
- */
-const STEP_BAND_BUDGET_MS = 8;
 /** The CPU fallback's image side and samples per pixel. */
 const CPU_SIZE = 24;
 const CPU_SPP = 4;
@@ -168,7 +166,7 @@ export function createView(context: ViewContext<RoomKernels>): WidgetView<RoomFr
         offset: acc.samples,
         seed: which === 'reference' ? job.seed : job.seed + 1,
         signal: context.inputSignal,
-        bandBudgetMs: STEP_BAND_BUDGET_MS,
+        bandBudgetMs: BACKGROUND_BAND_BUDGET_MS,
       };
       const batch: PathBatch =
         which === 'reference'
