@@ -14,7 +14,8 @@
 // With --stacks, each submit and read-back names its callers (build with --minify false).
 // With --profile, the page's main thread is sampled (CDP Profiler, 0.2 ms) from just before
 // the input to the first picture, and the functions that took the most time are printed.
-//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks] [--profile]
+// --chromium-arg=FLAG (repeatable) adds a diagnostic Chromium flag, as in interaction.ts.
+//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks] [--profile] [--chromium-arg=FLAG]
 import { chromium } from 'playwright-core';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
@@ -164,7 +165,13 @@ const backend = option('backend', 'gpu');
 const afterSettleMs = Number(option('after-settle-ms', '0'));
 
 const { server, base } = await servePreview(ROOT, dist);
-const browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
+const extraArgs = process.argv
+  .filter((arg) => arg.startsWith('--chromium-arg='))
+  .map((arg) => arg.slice('--chromium-arg='.length));
+const browser = await chromium.launch({
+  executablePath: CHROMIUM_PATH,
+  args: [...WEBGPU_ARGS, ...extraArgs],
+});
 try {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   await context.addInitScript(`${WRAP}(${process.argv.includes('--stacks')})`);

@@ -22,10 +22,13 @@
 // The change alternates between 60 % of the slider's range and its initial value;
 // medians over `repeats` changes (fewer where a widget's changes take long; the row
 // says how many). A widget that fails or times out gets a row saying so.
-// With --samples, each widget's first-picture times are also printed one by one (in order,
+// With --chromium-arg=FLAG (repeatable), Chromium gets FLAG besides DESIGN.md's WebGPU flags:
+// a diagnostic (e.g. --chromium-arg=--disable-gpu-rasterization shows how much of a first
+// picture is Chromium rasterising the page in its GPU process beside WebGPU), never the
+// bench's numbers. With --samples, each widget's first-picture times are also printed one by one (in order,
 // to stderr): on a shared 2-core machine a median of 9 moves by ±15 ms from run to run.
 //   npx tsx bench/interaction.ts --dist=DIR [--repeats=N] [--backend=gpu|cpu|both]
-//     [--only-widgets=a,b] [--samples]  (or npm run bench -- --only=interaction --dist=DIR)
+//     [--only-widgets=a,b] [--samples] [--chromium-arg=FLAG ...]  (or npm run bench -- --only=interaction --dist=DIR)
 import { existsSync } from 'node:fs';
 import { loadavg } from 'node:os';
 import { fileURLToPath } from 'node:url';
@@ -50,6 +53,12 @@ import {
 } from './interactionJudge.ts';
 import { median, printTable, type BenchTable } from './table.ts';
 import { servePreview } from './previewPage.ts';
+
+/** DESIGN.md's flags, and the diagnostic extras of --chromium-arg (the header says so). */
+const EXTRA_ARGS = process.argv
+  .filter((arg) => arg.startsWith('--chromium-arg='))
+  .map((arg) => arg.slice('--chromium-arg='.length));
+const LAUNCH_ARGS = [...WEBGPU_ARGS, ...EXTRA_ARGS];
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 
@@ -506,7 +515,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
   const widgets = options.widgets ?? interactionWidgets();
   const loadAtStart = loadavg();
   const { server, base } = await servePreview(ROOT, dist);
-  let browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
+  let browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: LAUNCH_ARGS });
   const tables: BenchTable[] = [];
   const started = Date.now();
   try {
@@ -521,7 +530,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
         }
         // A crashed browser (GPU process lost) is started again for the next widget.
         if (!browser.isConnected())
-          browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: WEBGPU_ARGS });
+          browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: LAUNCH_ARGS });
         const current = browser;
         const run = measureWidget(current, base, name, backend, options.repeats);
         let timedOut = false;
@@ -552,6 +561,11 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
         title: `Slider input to picture, ${backend === 'gpu' ? 'WebGPU' : 'CPU fallback (?backend=cpu)'} (Chromium, embed pages, ${dist})`,
         notes: [
           `Adapter: ${adapter}.`,
+          ...(EXTRA_ARGS.length > 0
+            ? [
+                `Diagnostic run: Chromium also got ${EXTRA_ARGS.join(' ')} (not the bench's setting).`,
+              ]
+            : []),
           `Medians of up to ${options.repeats} changes of the first slider (60 % of its range ↔ its initial value), after the widget settled; ` +
             `a widget stops repeating once its changes took ${CHANGE_BUDGET_MS / 1000} s (the "changes" column).`,
           'first picture: t0 = performance.now() before the input event, to the next increment of data-frames (data-rendered where the build has no data-frames).',
