@@ -101,8 +101,12 @@ const MAX_CACHED_REFERENCES = 8;
  * frames of seconds on a CPU WebGPU. Its size adapts to the measured cost per sample.
  */
 const REFERENCE_FRAME_MS = 120;
-/** One reference pass (one order's image) of that time: what an input may wait behind. */
-const REFERENCE_STEP_MS = 20;
+/**
+ * One reference pass (one order's image) of that time: what an input may wait behind. At
+ * 20 ms (GPU timestamps; wall time on SwiftShader is longer under load) a pass in flight
+ * held an input's first picture back by up to 60 ms (bench/firstPictureProbe.ts).
+ */
+const REFERENCE_STEP_MS = 10;
 /**
  * Share of the first-picture budget (refinement.ts) the preview's passes may use: the
  * rest is the display passes, the statistics and the page's own frame.
