@@ -4,6 +4,7 @@
 import { describe, expect, it } from 'vitest';
 import {
   Ladder,
+  PREVIEW_WORK_SHARE,
   RefinementState,
   TimeSlicer,
   whenIdle,
@@ -31,10 +32,17 @@ describe('Ladder', () => {
     expect(ladder.pick({ stage: 4 }).index).toBe(3);
   });
 
-  it('starts at the finest rung the measured cost fits into the first-picture budget', () => {
+  it('starts at the finest rung the measured cost fits into the preview’s share of the first-picture budget', () => {
     const ladder = new Ladder(RUNGS, 100, 0);
-    ladder.record(0, 5); // 5 ms per unit of work: 16 units = 80 ms fits, 64 = 320 ms does not
+    // 3 ms per unit of work: 16 units = 48 ms fits PREVIEW_WORK_SHARE × 100 ms, 64 = 192 does not.
+    ladder.record(0, 3);
     expect(ladder.pick({ stage: 0 }).index).toBe(2);
+    // 5 ms per unit: 16 units = 80 ms would fit the whole budget, but not the preview's share
+    // (the rest is the input, the work in flight and the drawing).
+    const tighter = new Ladder(RUNGS, 100, 0);
+    tighter.record(0, 5);
+    expect(PREVIEW_WORK_SHARE * 100).toBeLessThan(80);
+    expect(tighter.pick({ stage: 0 }).index).toBe(1);
     const slow = new Ladder(RUNGS, 100, 0);
     slow.record(0, 150); // even the lowest rung is over budget: still draw it
     expect(slow.pick({ stage: 0 }).index).toBe(0);
@@ -55,6 +63,23 @@ describe('Ladder', () => {
     ladder.record(3, 64 * 10); // 10 ms per unit
     ladder.record(3, 64 * 2); // then 2: smoothed to 6
     expect(ladder.fitting(100)).toBe(2); // 16 × 6 = 96 ≤ 100 < 64 × 6
+  });
+
+  it('predicts a measured rung by its own time, not by the work ratio of another', () => {
+    // A fixed part of every frame: the full picture (64 units) takes 64 ms, but the rung of
+    // 16 units 150 ms (photon-map's coarse previews cost far more than their work says).
+    const ladder = new Ladder(RUNGS, 100, 0);
+    ladder.record(3, 64);
+    expect(ladder.fitting(100)).toBe(3);
+    ladder.record(2, 150);
+    expect(ladder.predicted(2)).toBe(150);
+    // Rung 1 is not measured: scaled from the nearest measured rung (2), 150 × 4/16.
+    expect(ladder.predicted(1)).toBeCloseTo(37.5, 9);
+    // The full picture still fits 100 ms: the finest fitting rung is chosen.
+    expect(ladder.fitting(100)).toBe(3);
+    ladder.record(3, 300); // now smoothed to 182
+    expect(ladder.fitting(100)).toBe(1);
+    expect(ladder.pick({ stage: 0 }).index).toBe(1);
   });
 
   it('labels previews and full quality, and asks for the next stage only before the top', () => {

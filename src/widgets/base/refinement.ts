@@ -13,6 +13,14 @@
 export const GPU_FIRST_PICTURE_MS = 100;
 /** …and within this with the CPU twin (issue 23: 100 ms and 200 ms on a CPU WebGPU). */
 export const CPU_FIRST_PICTURE_MS = 200;
+/**
+ * Share of the first-picture budget a preview's own work may take: the budget runs from the
+ * input to the picture on screen, and the rest goes to handling the input, waiting for the
+ * GPU work in flight and drawing (together 20–40 ms on SwiftShader, firstPictureProbe).
+ * A ladder picks its first rung by this share (Ladder.pick); volume-path-tracer sizes its
+ * preview by it.
+ */
+export const PREVIEW_WORK_SHARE = 0.6;
 /** Work on the main thread runs in slices of at most this (the long-task threshold). */
 export const SLICE_MS = 50;
 /** What a refinement stage after the first may cost (per frame): the page stays responsive. */
@@ -192,14 +200,22 @@ export interface RungChoice<T> {
 
 /**
  * A ladder of settings from coarse to full, climbed one rung per stage. Stage 0 starts on
- * the finest rung whose predicted cost fits the first-picture budget: the cost per unit
- * of work is learnt from the frames drawn (record), so a fast GPU starts high and a CPU
- * WebGPU starts low. Before any measurement it starts on the lowest rung.
+ * the finest rung whose predicted cost fits the preview's share of the first-picture
+ * budget (PREVIEW_WORK_SHARE), so a fast GPU starts
+ * high and a CPU WebGPU starts low. Before any measurement it starts on the lowest rung.
+ *
+ * The cost of a rung is learnt from the frames drawn on it (record): a rung measured before
+ * is predicted by its own time; one not measured yet by the nearest measured rung's time
+ * scaled by the ratio of their work. A frame's time is rarely proportional to its work: a
+ * fixed part (dispatches, read-backs, a march over the pixels) made photon-map's coarsest
+ * previews cost a quarter of its full picture, not the 1/25 their work says, and one cost
+ * per unit of work learnt mostly from the full pictures picked previews of 80–130 ms for a
+ * budget of 100 (issue 23).
  */
 export class Ladder<T> {
   private current = 0;
-  /** Milliseconds per unit of work, smoothed over recent frames (null: nothing measured yet). */
-  private msPerWork: number | null = null;
+  /** Each rung's time (ms), smoothed over its recent frames (null: never drawn). */
+  private readonly measured: (number | null)[];
 
   constructor(
     readonly rungs: readonly Rung<T>[],
@@ -207,28 +223,43 @@ export class Ladder<T> {
     private readonly stageBudgetMs = REFINE_STAGE_MS,
   ) {
     if (rungs.length === 0) throw new Error('a ladder needs at least one rung');
+    this.measured = rungs.map(() => null);
   }
 
   /**
-   * The rung of this stage: at stage 0 the finest rung predicted to fit the first-picture
-   * budget; after that at least one rung up, or straight to the finest rung predicted to
-   * fit a refinement stage's budget (a fast GPU skips the rungs it does not need).
+   * The rung of this stage: at stage 0 the finest rung predicted to fit the preview's share
+   * of the first-picture budget (PREVIEW_WORK_SHARE); after that at least one rung up, or
+   * straight to the finest rung predicted to fit a refinement stage's budget (a fast GPU
+   * skips the rungs it does not need).
    */
   pick(request: Pick<FrameRequest, 'stage'>): RungChoice<T> {
     const last = this.rungs.length - 1;
     this.current =
       request.stage === 0
-        ? this.fitting(this.firstBudgetMs)
+        ? this.fitting(PREVIEW_WORK_SHARE * this.firstBudgetMs)
         : Math.min(Math.max(this.current + 1, this.fitting(this.stageBudgetMs)), last);
     return { rung: this.rungs[this.current]!, index: this.current, final: this.current === last };
   }
 
+  /** The predicted time (ms) of rung `index`, or null before any rung was measured. */
+  predicted(index: number): number | null {
+    const own = this.measured[index];
+    if (own !== null && own !== undefined) return own;
+    let nearest = -1;
+    this.measured.forEach((ms, j) => {
+      if (ms !== null && (nearest < 0 || Math.abs(j - index) < Math.abs(nearest - index)))
+        nearest = j;
+    });
+    if (nearest < 0) return null;
+    return (this.measured[nearest]! * this.rungs[index]!.work) / this.rungs[nearest]!.work;
+  }
+
   /** The index of the finest rung predicted to cost at most `budgetMs` (0 before any measurement). */
   fitting(budgetMs: number): number {
-    if (this.msPerWork === null) return 0;
     let best = 0;
-    this.rungs.forEach((rung, index) => {
-      if (this.msPerWork! * rung.work <= budgetMs) best = index;
+    this.rungs.forEach((_, index) => {
+      const ms = this.predicted(index);
+      if (ms !== null && ms <= budgetMs) best = index;
     });
     return best;
   }
@@ -237,8 +268,9 @@ export class Ladder<T> {
   record(index: number, milliseconds: number): void {
     const rung = this.rungs[index];
     if (!rung || !(milliseconds >= 0) || !(rung.work > 0)) return;
-    const perWork = milliseconds / rung.work;
-    this.msPerWork = this.msPerWork === null ? perWork : 0.5 * (this.msPerWork + perWork);
+    const before = this.measured[index];
+    this.measured[index] =
+      before === null || before === undefined ? milliseconds : 0.5 * (before + milliseconds);
   }
 
   /** The refinement of a frame drawn on `choice`. */

@@ -62,14 +62,27 @@ const SWEEP_PHOTONS = 4096;
  * the full time on SwiftShader), hence the half resolution of the first rung.
  */
 const RUNGS = [
-  // The smallest rung for a slow machine: the preview of 1/16 (with path tracing in the
-  // same time) took 95–110 ms on SwiftShader, just past the first-picture budget.
+  // The smallest rungs for a slow machine: on SwiftShader the preview of 1/16 (with path
+  // tracing in the same time) took 95–110 ms, past the first-picture budget, and 1/64 at
+  // half resolution about 80 ms (the gather's march over the pixels and the path tracing
+  // that matches its time are most of a small preview's cost).
+  {
+    fraction: 1 / 64,
+    pixelScale: 4,
+    work: 0.015,
+    label: '1/64 of the photons, quarter resolution',
+  },
   { fraction: 1 / 64, pixelScale: 2, work: 0.04, label: '1/64 of the photons, half resolution' },
   { fraction: 1 / 16, pixelScale: 2, work: 0.1, label: '1/16 of the photons, half resolution' },
   { fraction: 1 / 4, pixelScale: 1, work: 0.4, label: '¼ of the photons' },
   { fraction: 1, pixelScale: 1, work: 1, label: 'all photons' },
 ] as const;
 type PhotonRung = (typeof RUNGS)[number];
+/** What a preview's stage line says of its pixel scale. */
+const RESOLUTION_NAMES: Readonly<Record<number, string>> = {
+  2: ', half resolution',
+  4: ', quarter resolution',
+};
 const PREVIEW_MIN_PHOTONS = 1024;
 
 /** The reference as the cost line names it (student-facing: no repository paths). */
@@ -263,8 +276,14 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
   const ladderFor = (kind: 'gpu' | 'cpu'): Ladder<PhotonRung> => {
     let ladder = ladders.get(kind);
     if (!ladder) {
+      // The quarter-resolution rung is the GPU's (on SwiftShader): the CPU twin's picture is
+      // 32×24, which a quarter would make 8×6, and its first picture takes a few ms anyway.
       ladder = new Ladder(
-        RUNGS.map((rung) => ({ value: rung, work: rung.work, label: rung.label })),
+        RUNGS.filter((rung) => kind === 'gpu' || rung.pixelScale < 4).map((rung) => ({
+          value: rung,
+          work: rung.work,
+          label: rung.label,
+        })),
         firstPictureBudget(kind),
       );
       ladders.set(kind, ladder);
@@ -312,7 +331,7 @@ export function createView(context: ViewContext<GpuContext>): WidgetView<PhotonF
       stage: final
         ? { label: `${inputs.photons.toLocaleString('en-US')} photons`, pending: null }
         : {
-            label: `Preview: ${photons.toLocaleString('en-US')} of ${inputs.photons.toLocaleString('en-US')} photons${choice.rung.value.pixelScale > 1 ? ', half resolution' : ''}, path tracing in the same time`,
+            label: `Preview: ${photons.toLocaleString('en-US')} of ${inputs.photons.toLocaleString('en-US')} photons${RESOLUTION_NAMES[choice.rung.value.pixelScale] ?? ''}, path tracing in the same time`,
             pending: 'frame',
           },
     };

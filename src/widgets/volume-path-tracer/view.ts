@@ -18,7 +18,12 @@ import { packScene, sceneData } from '../../scene/pack.ts';
 import { plan, type Plan } from '../../scene/plan.ts';
 import type { PassRenderer, PassTiming } from '../../scene/render.ts';
 import type { Backend } from '../base/backend.ts';
-import { firstPictureBudget, type FrameRequest, type Refinement } from '../base/refinement.ts';
+import {
+  PREVIEW_WORK_SHARE,
+  firstPictureBudget,
+  type FrameRequest,
+  type Refinement,
+} from '../base/refinement.ts';
 import { imageCanvas, imageFigure, imagePanel } from '../base/imagePanel.ts';
 import { LinePlot, createPlotArea } from '../base/plot.ts';
 import { logLogSlope, mergeSeries, type SweepPoint } from '../base/sweep.ts';
@@ -107,11 +112,6 @@ const REFERENCE_FRAME_MS = 120;
  * held an input's first picture back by up to 60 ms (bench/firstPictureProbe.ts).
  */
 const REFERENCE_STEP_MS = 10;
-/**
- * Share of the first-picture budget (refinement.ts) the preview's passes may use: the
- * rest is the display passes, the statistics and the page's own frame.
- */
-const PREVIEW_SHARE = 0.6;
 /** Time the image passes of one background frame may take (both orders together, ms). */
 const BACKGROUND_FRAME_MS = 40;
 
@@ -633,7 +633,7 @@ export function createView(
     // be running when the input comes (a running job is not stopped): the preview leaves
     // room for one (firstPictureProbe: a 200 ms background pass ahead of the preview's).
     const room = kind === 'cpu' ? BACKGROUND_FRAME_MS : 0;
-    const fits = Math.floor((PREVIEW_SHARE * firstPictureBudget(kind) - room) / cost);
+    const fits = Math.floor((PREVIEW_WORK_SHARE * firstPictureBudget(kind) - room) / cost);
     return Math.max(1, Math.min(perFrame, fits));
   };
 
