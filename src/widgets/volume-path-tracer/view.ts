@@ -112,8 +112,12 @@ const REFERENCE_FRAME_MS = 120;
  * held an input's first picture back by up to 60 ms (bench/firstPictureProbe.ts).
  */
 const REFERENCE_STEP_MS = 10;
-/** Time the image passes of one background frame may take (both orders together, ms). */
-const BACKGROUND_FRAME_MS = 40;
+/**
+ * Time the image passes of one background frame may take (both orders together, GPU ms):
+ * an input's first picture waits for them. At 40 the two passes in flight took up to 130
+ * ms of wall time on SwiftShader (firstPictureProbe).
+ */
+const BACKGROUND_FRAME_MS = 20;
 
 /** Frees a cached reference: its renderers while unfinished, else its moments. */
 function destroyReference(job: ReferenceJob): void {
