@@ -61,12 +61,13 @@ test('grey medium from a deep link: zero colour noise for the shared walks; the 
   await spread.fill('16');
   await spread.press('Enter');
   await waitForRender(widget, rendered + 1);
-  // The input's first picture is a one-sample preview of the new medium (no frame of the
-  // old one is shown after the input), then the passes of spp.
+  // The input's first picture is a one-sample preview of the new medium at half the side
+  // (no frame of the old one is shown after the input), then the passes of spp (2) at the
+  // full side, which start their own accumulation.
   await expect.poll(async () => (await stagesShown()).length).toBeGreaterThanOrEqual(2);
   const stages = await stagesShown();
-  expect(stages[0]).toMatch(/^Preview: 1 of 4 samples per pixel each/);
-  expect(stages[1]).toMatch(/^3 of 4 samples per pixel each/);
+  expect(stages[0]).toMatch(/^Preview: 1 of 4 samples per pixel each \(32×32 pixels/);
+  expect(stages[1]).toMatch(/^2 of 4 samples per pixel each \(64×64 pixels/);
   const [, heroAfter] = await colourNoise(widget);
   expect(heroAfter).toBeGreaterThan(0);
   // An input starts the plot again: two points each at the target, not four.

@@ -47,6 +47,12 @@ type Pass = (
   frame: number,
 ) => Promise<{ sums: ArrayLike<number>; milliseconds: number }>;
 
+/**
+ * The GPU's preview side: its four passes (three estimators and the reference, one sample
+ * per pixel each) took about 50 ms of GPU time at GPU_SIZE on SwiftShader, half of the
+ * first-picture budget by themselves (issue 23, firstPictureProbe).
+ */
+const GPU_PREVIEW_SIZE = GPU_SIZE / 2;
 /** GPU time one estimator pass may take (ms): an input waits for the pass in flight. */
 const ESTIMATOR_PASS_MS = 20;
 
@@ -167,19 +173,22 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
 
   async function frame(
     request: FrameRequest,
-    size: number,
+    fullSize: number,
+    previewSize: number,
     run: Pass,
     timing: GpuTiming | 'cpu',
   ): Promise<ChromaticFrame | null> {
     const inputs = inputsFrom(context.values);
+    // The first frame after an input is a preview of one sample per pixel (a quarter of a
+    // default pass, within the first-picture budget of issue 23), at `previewSize`; later
+    // passes take spp at the full size. A preview at a smaller size is a picture of its own:
+    // the full size starts its accumulation afresh (one sample per pixel is not missed).
+    const restart = request.stage === 0 && !request.background;
+    const preview = restart && inputs.spp > 1;
+    const size = preview ? previewSize : fullSize;
     const key = `${accumulationKey(inputs)}@${size}`;
-    if (!state || state.key !== key || (request.stage === 0 && !request.background)) {
-      state = fresh(inputs, size);
-    }
+    if (!state || state.key !== key || restart) state = fresh(inputs, size);
     const s = state;
-    // The first pass of an accumulation is a preview of one sample per pixel (a quarter of
-    // a default pass, within the first-picture budget of issue 23); later passes take spp.
-    const preview = s.pass === 0 && inputs.spp > 1;
     const spp = preview
       ? 1
       : Math.min(inputs.spp, Math.max(inputs.target - s.estimators.hero.samples, 1));
@@ -360,12 +369,12 @@ export function createView(context: ViewContext): WidgetView<ChromaticFrame, Chr
         if (pass.timing === 'gpu-wall') timing = 'gpu-wall';
         return pass;
       };
-      const result = await frame(request, GPU_SIZE, run, 'gpu-timestamp');
+      const result = await frame(request, GPU_SIZE, GPU_PREVIEW_SIZE, run, 'gpu-timestamp');
       return result && { ...result, timing };
     },
     async renderCpu(request) {
       const run: Pass = (...args) => cpuJobs.run('pass', args);
-      return frame(request, CPU_SIZE, run, 'cpu');
+      return frame(request, CPU_SIZE, CPU_SIZE, run, 'cpu');
     },
     refinement: (f) => f.refinement,
     show(f) {
