@@ -40,10 +40,13 @@ function problem(resolution: number, views: number, size: number, steps: number)
   };
 }
 
-async function trainer(p: Problem): Promise<InverseTrainerGpu> {
+async function trainer(
+  p: Problem,
+  options: { previewSteps?: number } = {},
+): Promise<InverseTrainerGpu> {
   const device = await nodeDevice();
   const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
-  return InverseTrainerGpu.create(device, code, p);
+  return InverseTrainerGpu.create(device, code, p, options);
 }
 
 /** Raw values uniform in [lo, hi] (ρ) and [−2, 2] (emission), rounded to f32 for both sides. */
@@ -109,11 +112,7 @@ describe('inverse-render kernels vs the float64 twin', () => {
 
   it('the targets’ preview (PREVIEW_TARGET_STEPS) comes first, as the twin draws it, and the exact targets stay exact', async () => {
     const p = problem(8, 3, 12, 16);
-    const device = await nodeDevice();
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
-    const gpu = await InverseTrainerGpu.create(device, code, p, {
-      previewSteps: PREVIEW_TARGET_STEPS,
-    });
+    const gpu = await trainer(p, { previewSteps: PREVIEW_TARGET_STEPS });
     const preview = await gpu.readPreviewTargets();
     expect(preview).not.toBeNull();
     // Read once only.
@@ -141,11 +140,7 @@ describe('inverse-render kernels vs the float64 twin', () => {
   it('with a preview never read, readTargets still gets the exact targets', async () => {
     // The exact targets are held back until the preview has come back (gpuBackend.ts).
     const p = problem(8, 2, 12, 16);
-    const device = await nodeDevice();
-    const code = await linkLibraryKernel(SHADER_LIBRARY, KERNEL);
-    const gpu = await InverseTrainerGpu.create(device, code, p, {
-      previewSteps: PREVIEW_TARGET_STEPS,
-    });
+    const gpu = await trainer(p, { previewSteps: PREVIEW_TARGET_STEPS });
     const targets = await gpu.readTargets();
     const twin = renderTargetsCpu(p);
     let exact = 0;
