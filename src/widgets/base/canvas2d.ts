@@ -12,11 +12,14 @@
 
 export type Context2D = CanvasRenderingContext2D | OffscreenCanvasRenderingContext2D;
 
+/** The context attributes that ask for a canvas rasterised on the CPU. */
+export const CPU_RASTERISED = { willReadFrequently: true } as const;
+
 /** The CPU-rasterised 2D context of `canvas`; null where the canvas has another kind. */
 export function context2d(canvas: HTMLCanvasElement): CanvasRenderingContext2D | null;
 export function context2d(canvas: OffscreenCanvas): OffscreenCanvasRenderingContext2D | null;
 export function context2d(canvas: HTMLCanvasElement | OffscreenCanvas): Context2D | null;
 export function context2d(canvas: HTMLCanvasElement | OffscreenCanvas): Context2D | null {
   // eslint-disable-next-line no-restricted-syntax -- the one place that asks.
-  return canvas.getContext('2d', { willReadFrequently: true }) as Context2D | null;
+  return canvas.getContext('2d', CPU_RASTERISED) as Context2D | null;
 }

@@ -2,6 +2,7 @@
 // so every widget's plots look alike and follow the page's theme.
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
+import { CPU_RASTERISED } from './canvas2d.ts';
 import { formatNumber } from './format.ts';
 
 /**
@@ -64,7 +65,7 @@ function withCpuCanvases<T>(make: () => T): T {
     return original.call(
       this,
       type,
-      type === '2d' ? { ...attributes, willReadFrequently: true } : attributes,
+      type === '2d' ? { ...attributes, ...CPU_RASTERISED } : attributes,
     );
   };
   prototype.getContext = patched as typeof saved;

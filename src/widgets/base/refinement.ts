@@ -201,8 +201,8 @@ export interface RungChoice<T> {
 /**
  * A ladder of settings from coarse to full, climbed one rung per stage. Stage 0 starts on
  * the finest rung whose predicted cost fits the preview's share of the first-picture
- * budget (PREVIEW_WORK_SHARE), so a fast GPU starts
- * high and a CPU WebGPU starts low. Before any measurement it starts on the lowest rung.
+ * budget (PREVIEW_WORK_SHARE), so a fast GPU starts high and a CPU WebGPU starts low.
+ * Before any measurement it starts on the lowest rung.
  *
  * The cost of a rung is learnt from the frames drawn on it (record): a rung measured before
  * is predicted by its own time; one not measured yet by the nearest measured rung's time

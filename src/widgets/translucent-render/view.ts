@@ -172,6 +172,12 @@ export function createView(
     return ladder;
   };
 
+  /** The worker job's arguments for the octree of `count` samples (and its cache key). */
+  const octreeArgs = (
+    forScene: TranslucentScene,
+    count: number,
+  ): [ReturnType<typeof sampleSceneOf>, number] => [sampleSceneOf(forScene), count];
+
   /**
    * The octree of the scene's irradiance samples, from the worker (jobs.ts): it depends
    * on the sphere, its index and the light only, so a change of ε, size or exposure
@@ -182,7 +188,7 @@ export function createView(
     count: number,
     signal?: AbortSignal,
   ): Promise<OctreeState> => {
-    const args: [ReturnType<typeof sampleSceneOf>, number] = [sampleSceneOf(forScene), count];
+    const args = octreeArgs(forScene, count);
     const key = JSON.stringify(args);
     if (octreeState?.key === key) return octreeState;
     const built =
@@ -611,7 +617,7 @@ export function createView(
 
   /** Whether the octree of `count` samples for this scene is built (here or in the worker's cache). */
   const octreeReady = (forScene: TranslucentScene, count: number): boolean => {
-    const args: [ReturnType<typeof sampleSceneOf>, number] = [sampleSceneOf(forScene), count];
+    const args = octreeArgs(forScene, count);
     return (
       octreeState?.key === JSON.stringify(args) ||
       translucentJobs.cached('octree', args) !== undefined
