@@ -14,9 +14,14 @@
 // With --stacks, each submit and read-back names its callers (build with --minify false).
 // With --profile, the page's main thread is sampled (CDP Profiler, 0.2 ms) from just before
 // the input to the first picture, and the functions that took the most time are printed.
+// With --trace, a Chromium trace is recorded around the input, and the busy time of the GPU
+// process's main thread (where Dawn runs WebGPU beside the raster of the page, under
+// DESIGN.md's flags) from the input to the first picture is printed by task, with the
+// tasks that ran longest; --trace=FILE also keeps the trace (chrome://tracing, Perfetto).
 // --chromium-arg=FLAG (repeatable) adds a diagnostic Chromium flag, as in interaction.ts.
-//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks] [--profile] [--chromium-arg=FLAG]
+//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks] [--profile] [--trace[=FILE]] [--chromium-arg=FLAG]
 import { chromium } from 'playwright-core';
+import { writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
 import { changeValues } from './interactionJudge.ts';
@@ -152,6 +157,94 @@ function printProfile(profile: CpuProfile): void {
     console.log(`    ${ms.toFixed(1).padStart(7)}  ${name}`);
 }
 
+interface TraceEvent {
+  name: string;
+  cat: string;
+  ph: string;
+  ts: number;
+  dur?: number;
+  pid: number;
+  tid: number;
+  args?: Record<string, unknown>;
+}
+
+/**
+ * What the GPU process's main thread did between the input and the first picture: its
+ * top-level tasks (complete events that no other event of that thread encloses), summed
+ * by name, and the longest ones. The page marks the input and the picture with
+ * console.timeStamp, which puts both on the trace's clock.
+ */
+function printGpuThread(events: TraceEvent[]): void {
+  const mark = (name: string): number | undefined =>
+    events.find(
+      (e) =>
+        e.name === 'TimeStamp' &&
+        (e.args?.['data'] as { message?: string } | undefined)?.message === name,
+    )?.ts;
+  const input = mark('probe-input');
+  const picture = mark('probe-picture');
+  if (input === undefined || picture === undefined) {
+    console.log('  trace: the input or picture mark is missing');
+    return;
+  }
+  const threadName = new Map<string, string>();
+  const processName = new Map<number, string>();
+  for (const e of events) {
+    if (e.ph !== 'M') continue;
+    const name = (e.args?.['name'] as string | undefined) ?? '';
+    if (e.name === 'thread_name') threadName.set(`${e.pid}:${e.tid}`, name);
+    if (e.name === 'process_name') processName.set(e.pid, name);
+  }
+  const gpuPid = [...processName.entries()].find(([, name]) => /GPU/i.test(name))?.[0];
+  const gpuMain = [...threadName.entries()].find(
+    ([key, name]) => key.startsWith(`${gpuPid}:`) && name === 'CrGpuMain',
+  )?.[0];
+  if (gpuMain === undefined) {
+    console.log('  trace: no GPU process main thread (CrGpuMain) in the trace');
+    return;
+  }
+  const tasks = events
+    .filter((e) => e.ph === 'X' && `${e.pid}:${e.tid}` === gpuMain && e.dur !== undefined)
+    .sort((a, b) => a.ts - b.ts || b.dur! - a.dur!);
+  // Top level: not inside the previous top-level task.
+  const top: TraceEvent[] = [];
+  for (const e of tasks) {
+    const last = top.at(-1);
+    if (last && e.ts < last.ts + last.dur!) continue;
+    top.push(e);
+  }
+  const inWindow = top.filter((e) => e.ts + e.dur! > input && e.ts < picture);
+  // A task's children name what it was (the top level is the scheduler's RunTask).
+  const childName = (task: TraceEvent): string => {
+    const child = tasks.find(
+      (e) =>
+        e !== task &&
+        e.ts >= task.ts &&
+        e.ts + e.dur! <= task.ts + task.dur! &&
+        e.name !== task.name,
+    );
+    return child ? `${task.name} > ${child.name}` : task.name;
+  };
+  const byName = new Map<string, number>();
+  let busy = 0;
+  for (const e of inWindow) {
+    const overlap = (Math.min(e.ts + e.dur!, picture) - Math.max(e.ts, input)) / 1000;
+    busy += overlap;
+    const name = childName(e);
+    byName.set(name, (byName.get(name) ?? 0) + overlap);
+  }
+  console.log(
+    `  GPU process main thread, input to first picture (${((picture - input) / 1000).toFixed(0)} ms): busy ${busy.toFixed(1)} ms`,
+  );
+  for (const [name, ms] of [...byName.entries()].sort((a, b) => b[1] - a[1]).slice(0, 12))
+    console.log(`    ${ms.toFixed(1).padStart(7)}  ${name}`);
+  console.log('  its longest tasks (start after the input, ms):');
+  for (const e of [...inWindow].sort((a, b) => b.dur! - a.dur!).slice(0, 8))
+    console.log(
+      `    ${((e.ts - input) / 1000).toFixed(0).padStart(5)}  ${(e.dur! / 1000).toFixed(1).padStart(6)}  ${childName(e)}`,
+    );
+}
+
 function option(name: string, fallback?: string): string {
   const found = process.argv.find((arg) => arg.startsWith(`--${name}=`));
   const value = found?.slice(name.length + 3) ?? fallback;
@@ -180,8 +273,7 @@ try {
   await page.goto(`${base}/embed/${widget}.html${query}`);
   const tag = `sb-${widget}`;
   await page.locator(tag).first().scrollIntoViewIfNeeded();
-  // Settled as the bench judges it: data-settled "true" for 300 ms, or (a build without
-  // it) no new frame for 2 s.
+  // Settled as the bench judges it.
   const loadStart = Date.now();
   let quietSince = Date.now();
   let lastCount = '';
@@ -193,7 +285,10 @@ try {
         count: `${el?.dataset['frames'] ?? ''}/${el?.dataset['rendered'] ?? ''}`,
       };
     }, tag);
-    if (state.count !== lastCount || state.settled === 'false') {
+    // data-settled "true" held 300 ms counts whatever frames come (a widget that goes on
+    // accumulating draws every few hundred ms), as in interaction.ts; without it, no
+    // new frame for 2 s.
+    if ((state.settled === null && state.count !== lastCount) || state.settled === 'false') {
       lastCount = state.count;
       quietSince = Date.now();
     }
@@ -214,6 +309,7 @@ try {
     const control = el.querySelector('input[data-probe]');
     const count = () => Number(el.dataset.frames ?? el.dataset.rendered ?? 0);
     const before = count();
+    console.timeStamp('probe-input');
     const t0 = performance.now();
     control.value = String(next);
     control.dispatchEvent(new Event('input', { bubbles: true }));
@@ -226,6 +322,7 @@ try {
       observer.observe(el, { attributes: true });
     });
     const t1 = performance.now();
+    console.timeStamp('probe-picture');
     // The picture reaches the screen with the next frame the page produces: a render
     // that starts early does not help while frame production is stalled.
     await new Promise((resolve) => requestAnimationFrame(resolve));
@@ -243,6 +340,21 @@ try {
     await cdp.send('Profiler.setSamplingInterval', { interval: 200 });
     await cdp.send('Profiler.start');
   }
+  const traceArg = process.argv.find((arg) => arg === '--trace' || arg.startsWith('--trace='));
+  if (traceArg)
+    await browser.startTracing(page, {
+      categories: [
+        'devtools.timeline',
+        'toplevel',
+        'gpu',
+        'cc',
+        'viz',
+        'skia',
+        'disabled-by-default-devtools.timeline',
+      ],
+    });
+  // A second of the settled page before the input, so the trace shows what was running.
+  if (traceArg) await page.waitForTimeout(1000);
   const result = (await page.evaluate(`(${INPUT})(${JSON.stringify({ tag, next })})`)) as {
     control: string;
     value: number;
@@ -256,6 +368,14 @@ try {
     `${widget} (${backend}): ${result.control} → ${result.value}: first picture ${result.firstMs.toFixed(0)} ms (${result.stage}), next animation frame at ${result.frameMs.toFixed(0)} ms`,
   );
   if (cdp) printProfile((await cdp.send('Profiler.stop')).profile);
+  if (traceArg) {
+    const trace = await browser.stopTracing();
+    const file = traceArg.startsWith('--trace=') ? traceArg.slice('--trace='.length) : null;
+    if (file) writeFileSync(file, trace);
+    printGpuThread(
+      (JSON.parse(trace.toString('utf8')) as { traceEvents: TraceEvent[] }).traceEvents,
+    );
+  }
   for (const entry of result.log) {
     const start = (entry['start'] as number) - result.t0;
     const end = entry['end'] === null ? null : (entry['end'] as number) - result.t0;

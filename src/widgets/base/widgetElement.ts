@@ -4,6 +4,7 @@
 // presentation mode (key F or the button, Esc to leave, number keys for presets),
 // visible notices, and rendering only while on screen. A failure inside a widget
 // is shown inside it and never escapes to the page.
+import { HeightHold } from './heightHold.ts';
 import {
   encodeParameters,
   parseParameters,
@@ -80,6 +81,8 @@ export abstract class WidgetElement extends HTMLElement {
   private frameRequest: number | null = null;
   private observer: IntersectionObserver | null = null;
   private presentButton: HTMLButtonElement | null = null;
+  /** Keeps the readout area from shrinking back as its numbers change (heightHold.ts). */
+  private readoutHold: HeightHold | null = null;
   protected widgetId = '';
 
   /** Builds the widget's own drawing area (canvas, plot) inside the stage. */
@@ -166,6 +169,8 @@ export abstract class WidgetElement extends HTMLElement {
     this.notices.clear();
     this.controlInputs.clear();
     this.presentButton = null;
+    this.readoutHold?.disconnect();
+    this.readoutHold = null;
     this.replaceChildren();
   }
 
@@ -244,7 +249,11 @@ export abstract class WidgetElement extends HTMLElement {
     const stage = root.querySelector<HTMLElement>('.sb-stage');
     if (stage) this.buildStage(stage);
     const readout = root.querySelector<HTMLElement>('.sb-readout-area');
-    if (readout) this.buildReadout(readout);
+    if (readout) {
+      this.buildReadout(readout);
+      this.readoutHold?.disconnect();
+      this.readoutHold = new HeightHold(readout);
+    }
     // The same listener object each time, so a shell built again adds no second one.
     this.addEventListener('keydown', this.keyListener);
     root.addEventListener('fullscreenchange', this.fullscreenListener);
@@ -532,6 +541,8 @@ export abstract class WidgetElement extends HTMLElement {
     this.presentButton?.setAttribute('aria-pressed', String(on));
     if (this.presentButton) this.presentButton.textContent = on ? 'Exit presentation' : 'Present';
     document.documentElement.classList.toggle('sb-presenting', on);
+    // Presentation sets larger type: the readouts' held height is the old type's.
+    this.readoutHold?.restart();
     if (on) {
       document.addEventListener('keydown', this.documentEscapeListener);
       this.root.tabIndex = -1;
