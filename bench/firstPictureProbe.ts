@@ -19,7 +19,7 @@
 // DESIGN.md's flags) from the input to the first picture is printed by task, with the
 // tasks that ran longest; --trace=FILE also keeps the trace (chrome://tracing, Perfetto).
 // --chromium-arg=FLAG (repeatable) adds a diagnostic Chromium flag, as in interaction.ts.
-//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks] [--profile] [--trace[=FILE]] [--chromium-arg=FLAG]
+//   npx tsx bench/firstPictureProbe.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--after-settle-ms=N] [--stacks] [--profile] [--trace[=FILE]] [--page=chapters/NAME.html] [--chromium-arg=FLAG]
 import { chromium } from 'playwright-core';
 import { writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -270,7 +270,9 @@ try {
   await context.addInitScript(`${WRAP}(${process.argv.includes('--stacks')})`);
   const page = await context.newPage();
   const query = backend === 'cpu' ? '?backend=cpu' : '';
-  await page.goto(`${base}/embed/${widget}.html${query}`);
+  // The widget's embed page, or with --page=PATH the first such widget of a book page.
+  const pagePath = process.argv.find((arg) => arg.startsWith('--page='))?.slice('--page='.length);
+  await page.goto(`${base}/${pagePath ?? `embed/${widget}.html`}${query}`);
   const tag = `sb-${widget}`;
   await page.locator(tag).first().scrollIntoViewIfNeeded();
   // Settled as the bench judges it.

@@ -9,7 +9,9 @@
 // - content painted after a WebGPU canvas whose paint chunk's bounds covered the canvas
 //   went into an extra "Overlap" layer, up to the size of the widget (widgets.css:
 //   each block of a widget is its own stacking context; labels over a picture are a
-//   layer of their own box).
+//   layer of their own box);
+// - a chapter's sticky table of contents, painted before the chapter, made every
+//   formula and widget block after it a layer (book.css paints it after the chapter).
 import { expect, test, type Locator, type Page } from '@playwright/test';
 import { waitForSettled } from './support.ts';
 
@@ -109,3 +111,17 @@ for (const name of [
     expect(overlapping, JSON.stringify(all)).toEqual([]);
   });
 }
+
+// A chapter's sticky table of contents moves as the page scrolls; painted before the
+// chapter, it made Chromium layerise every formula, equation and widget block after it
+// (50 layers in chapter 9). Painted after it (book.css), only its own layer is left.
+test('chapter 9: the table of contents does not turn the chapter into layers', async ({ page }) => {
+  await page.setViewportSize({ width: 1280, height: 900 });
+  await page.goto('/chapters/09-single-scattering.html');
+  const widget = page.locator('sb-single-scatter').first();
+  await widget.scrollIntoViewIfNeeded();
+  await waitForSettled(widget, 90_000);
+  const all = await layers(page);
+  const overlapping = all.filter((layer) => layer.reasons.includes('Overlap'));
+  expect(overlapping.length, JSON.stringify(overlapping)).toBeLessThanOrEqual(1);
+});
