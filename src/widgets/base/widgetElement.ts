@@ -252,7 +252,10 @@ export abstract class WidgetElement extends HTMLElement {
     if (readout) {
       this.buildReadout(readout);
       this.readoutHold?.disconnect();
-      this.readoutHold = new HeightHold(readout);
+      // Not on a lecture slide: the deck fits each slide by laying the figure out at
+      // several widths and zooms, and holds its controls still itself (book/deck/fit.ts);
+      // a height held from another layout would skew what it measures.
+      this.readoutHold = this.closest('.deck-slide') ? null : new HeightHold(readout);
     }
     // The same listener object each time, so a shell built again adds no second one.
     this.addEventListener('keydown', this.keyListener);
