@@ -27,8 +27,11 @@
 // picture is Chromium rasterising the page in its GPU process beside WebGPU), never the
 // bench's numbers. With --samples, each widget's first-picture times are also printed one by one (in order,
 // to stderr): on a shared 2-core machine a median of 9 moves by ±15 ms from run to run.
+// With --in-chapter, each widget is measured on its chapter page (the first widget of its
+// kind there, at 1280×900, scrolled into view) instead of its embed page: where a student
+// reads it, with the chapter's text, formulas and table of contents around it.
 //   npx tsx bench/interaction.ts --dist=DIR [--repeats=N] [--backend=gpu|cpu|both]
-//     [--only-widgets=a,b] [--samples] [--chromium-arg=FLAG ...]  (or npm run bench -- --only=interaction --dist=DIR)
+//     [--only-widgets=a,b] [--samples] [--in-chapter] [--chromium-arg=FLAG ...]  (or npm run bench -- --only=interaction --dist=DIR)
 import { existsSync } from 'node:fs';
 import { loadavg } from 'node:os';
 import { fileURLToPath } from 'node:url';
@@ -70,6 +73,8 @@ export interface InteractionOptions {
   backends: readonly BackendName[];
   /** Widget names to measure; every catalog widget but `exercise` when absent. */
   widgets?: readonly string[];
+  /** Measure each widget on its chapter page (where a student reads it), not its embed page. */
+  inChapter?: boolean;
 }
 
 /** Longest wait for full quality after an input (and for the first settle after loading). */
@@ -328,6 +333,7 @@ async function measureWidget(
   name: string,
   backend: BackendName,
   repeats: number,
+  inChapter = false,
 ): Promise<{ row: Row; adapter: string | null; settledBy: string }> {
   const context = await browser.newContext({
     viewport: { width: 1280, height: 900 },
@@ -342,9 +348,18 @@ async function measureWidget(
     });
     const query = backend === 'cpu' ? '?backend=cpu' : '';
     await page.goto(`${base}/embed/${name}.html${query}`, { waitUntil: 'domcontentloaded' });
+    if (inChapter) {
+      // The chapter the embed page's "Open in the book" link names; its first such widget.
+      const chapter = await page.locator('a.embed-chapter-link').getAttribute('href');
+      if (!chapter) throw new Error('no chapter link on the embed page');
+      const url = new URL(chapter, page.url());
+      url.search = query;
+      url.hash = '';
+      await page.goto(url.href, { waitUntil: 'domcontentloaded' });
+    }
     const tag = `sb-${name}`;
     if (!(await page.evaluate(`(${RECORDER})(${JSON.stringify(tag)})`)))
-      throw new Error(`no <${tag}> on the embed page`);
+      throw new Error(`no <${tag}> on the ${inChapter ? 'chapter' : 'embed'} page`);
     await page.locator(tag).first().scrollIntoViewIfNeeded();
     const recording = new Recording(page);
     const loaded = await recording.waitSettled(0, 0, LOAD_QUIET_MS, LOAD_CAP_MS);
@@ -532,7 +547,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
         if (!browser.isConnected())
           browser = await chromium.launch({ executablePath: CHROMIUM_PATH, args: LAUNCH_ARGS });
         const current = browser;
-        const run = measureWidget(current, base, name, backend, options.repeats);
+        const run = measureWidget(current, base, name, backend, options.repeats, options.inChapter);
         let timedOut = false;
         const result = await withTimeout(run, RUN_TIMEOUT_MS, () => {
           timedOut = true;
@@ -558,7 +573,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
         );
       }
       tables.push({
-        title: `Slider input to picture, ${backend === 'gpu' ? 'WebGPU' : 'CPU fallback (?backend=cpu)'} (Chromium, embed pages, ${dist})`,
+        title: `Slider input to picture, ${backend === 'gpu' ? 'WebGPU' : 'CPU fallback (?backend=cpu)'} (Chromium, ${options.inChapter ? 'each widget on its chapter page (the first of its kind there)' : 'embed pages'}, ${dist})`,
         notes: [
           `Adapter: ${adapter}.`,
           ...(EXTRA_ARGS.length > 0
@@ -617,6 +632,7 @@ export function interactionOptionsFromArgs(
     repeats,
     backends: backend === 'both' ? ['gpu', 'cpu'] : [backend as BackendName],
     widgets,
+    inChapter: argv.includes('--in-chapter'),
   };
 }
 

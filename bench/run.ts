@@ -3,7 +3,7 @@
 // --only=core,transmittance,estimators,subsurface,translucent,chromatic,room,widgets,scenes,peers,startup,photons,grading,pages,interaction,neural
 // runs a subset (`pages` and `interaction` measure the production build in dist/, or in
 // --dist=DIR: run `npx vite build` first; `interaction` also takes --backend=gpu|cpu|both
-// and --only-widgets=a,b, see bench/interaction.ts (`widgets` takes --only-widgets too);
+// and --only-widgets=a,b and --in-chapter, see bench/interaction.ts (`widgets` takes --only-widgets too);
 // `neural` takes --seconds=S and the problem as --views= --batch= --steps= --rate= --table=
 // --grid=, see bench/neural.ts; `startup` takes --baseline=DIR, an older checkout to time
 // alongside, see bench/startup.ts).
