@@ -75,10 +75,10 @@ async function layers(page: Page): Promise<{ size: string; reasons: string[] }[]
     }
     return out;
   };
-  // Paints, until a reported tree has the pictures' layers (a report can be of an
-  // update that left them out).
+  // Paints, until a reported tree has the pictures' layers: a report can leave them out
+  // (seen in the full test run, on a loaded machine, for seconds on end).
   let out: { size: string; reasons: string[] }[] = [];
-  for (let i = 0; i < 20; i++) {
+  for (let i = 0; i < 80; i++) {
     await page.evaluate((n) => {
       document.body.style.outline = `${n % 2}px solid transparent`;
     }, i);

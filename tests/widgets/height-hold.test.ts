@@ -1,4 +1,4 @@
-// HeightHold (src/widgets/base/heightHold.ts): the readout area grows with its content
+// HeightHold (src/widgets/base/heightHold.ts): a widget's body grows with its content
 // and does not shrink back while its numbers change; a new width or a restart holds
 // the content's own height instead. The ResizeObserver is a stand-in driven by hand;
 // the behaviour in a browser is in tests/e2e/widget-layout.spec.ts.

@@ -1,9 +1,9 @@
 // A box that grows with its content but does not shrink back while the content changes,
 // so that a widget's height stays put from frame to frame.
 //
-// Why: readout values wrap onto one line, then two, as their digits change, and the
-// widget's height followed them, so the document was laid out anew at nearly every
-// frame. Under DESIGN.md's Chromium flags the page is rasterised and composited on the
+// Why: readout values (and status lines, captions) wrap onto one line, then two, as
+// their digits change, and the widget's height followed them, so the document was laid
+// out anew at nearly every frame. Under DESIGN.md's Chromium flags the page is rasterised and composited on the
 // same software GPU as WebGPU, and the GPU process's main thread waits for each swap. A
 // document that changed height re-created the composited layers over the widget and
 // rasterised them whole. In a Chromium trace of volume-path-tracer

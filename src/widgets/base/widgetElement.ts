@@ -81,8 +81,8 @@ export abstract class WidgetElement extends HTMLElement {
   private frameRequest: number | null = null;
   private observer: IntersectionObserver | null = null;
   private presentButton: HTMLButtonElement | null = null;
-  /** Keeps the readout area from shrinking back as its numbers change (heightHold.ts). */
-  private readoutHold: HeightHold | null = null;
+  /** Keeps the widget's body from shrinking back as its numbers change (heightHold.ts). */
+  private bodyHold: HeightHold | null = null;
   protected widgetId = '';
 
   /** Builds the widget's own drawing area (canvas, plot) inside the stage. */
@@ -169,8 +169,8 @@ export abstract class WidgetElement extends HTMLElement {
     this.notices.clear();
     this.controlInputs.clear();
     this.presentButton = null;
-    this.readoutHold?.disconnect();
-    this.readoutHold = null;
+    this.bodyHold?.disconnect();
+    this.bodyHold = null;
     this.replaceChildren();
   }
 
@@ -249,14 +249,14 @@ export abstract class WidgetElement extends HTMLElement {
     const stage = root.querySelector<HTMLElement>('.sb-stage');
     if (stage) this.buildStage(stage);
     const readout = root.querySelector<HTMLElement>('.sb-readout-area');
-    if (readout) {
-      this.buildReadout(readout);
-      this.readoutHold?.disconnect();
-      // Not on a lecture slide: the deck fits each slide by laying the figure out at
-      // several widths and zooms, and holds its controls still itself (book/deck/fit.ts);
-      // a height held from another layout would skew what it measures.
-      this.readoutHold = this.closest('.deck-slide') ? null : new HeightHold(readout);
-    }
+    if (readout) this.buildReadout(readout);
+    // The body (stage and side) keeps its height while readouts, status lines and captions
+    // change. Not on a lecture slide: the deck fits each slide by laying the figure out
+    // at several widths and zooms, and holds its controls still itself
+    // (book/deck/fit.ts); a height held from another layout would skew what it measures.
+    const body = root.querySelector<HTMLElement>('.sb-widget-body');
+    this.bodyHold?.disconnect();
+    this.bodyHold = body && !this.closest('.deck-slide') ? new HeightHold(body) : null;
     // The same listener object each time, so a shell built again adds no second one.
     this.addEventListener('keydown', this.keyListener);
     root.addEventListener('fullscreenchange', this.fullscreenListener);
@@ -544,8 +544,8 @@ export abstract class WidgetElement extends HTMLElement {
     this.presentButton?.setAttribute('aria-pressed', String(on));
     if (this.presentButton) this.presentButton.textContent = on ? 'Exit presentation' : 'Present';
     document.documentElement.classList.toggle('sb-presenting', on);
-    // Presentation sets larger type: the readouts' held height is the old type's.
-    this.readoutHold?.restart();
+    // Presentation sets larger type: the body's held height is the old type's.
+    this.bodyHold?.restart();
     if (on) {
       document.addEventListener('keydown', this.documentEscapeListener);
       this.root.tabIndex = -1;
