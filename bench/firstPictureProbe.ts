@@ -214,16 +214,32 @@ function printGpuThread(events: TraceEvent[]): void {
     top.push(e);
   }
   const inWindow = top.filter((e) => e.ts + e.dur! > input && e.ts < picture);
-  // A task's children name what it was (the top level is the scheduler's RunTask).
+  // A task is named by what it ran: the nested events that took most of it, past the
+  // scheduler's wrappers (e.g. "SkiaOutputSurfaceImplOnGpu::SwapBuffers", the page's
+  // composited frame, or "WebGPU", the page's WebGPU commands).
+  const WRAPPERS = new Set([
+    'RunTask',
+    'ThreadControllerImpl::RunTask',
+    'Scheduler::RunTask',
+    'GpuChannel::ExecuteDeferredRequest',
+    'GPUTask',
+    'CommandBuffer::Flush',
+    'CommandBufferStub::OnAsyncFlush',
+  ]);
   const childName = (task: TraceEvent): string => {
-    const child = tasks.find(
+    const inside = tasks.filter(
       (e) =>
-        e !== task &&
         e.ts >= task.ts &&
         e.ts + e.dur! <= task.ts + task.dur! &&
-        e.name !== task.name,
+        !WRAPPERS.has(e.name) &&
+        e.dur! > 0.3 * task.dur!,
     );
-    return child ? `${task.name} > ${child.name}` : task.name;
+    return inside.length > 0
+      ? inside
+          .slice(0, 3)
+          .map((e) => e.name)
+          .join(' > ')
+      : task.name;
   };
   const byName = new Map<string, number>();
   let busy = 0;

@@ -3,10 +3,10 @@
 //
 // Why: readout values (and status lines, captions) wrap onto one line, then two, as
 // their digits change, and the widget's height followed them, so the document was laid
-// out anew at nearly every frame. Under DESIGN.md's Chromium flags the page is rasterised and composited on the
-// same software GPU as WebGPU, and the GPU process's main thread waits for each swap. A
-// document that changed height re-created the composited layers over the widget and
-// rasterised them whole. In a Chromium trace of volume-path-tracer
+// out anew at nearly every frame. Under DESIGN.md's Chromium flags the page is
+// rasterised and composited on the same software GPU as WebGPU, and the GPU process's
+// main thread waits for each swap. A document that changed height re-created the
+// composited layers over the widget and rasterised them whole. In a Chromium trace of volume-path-tracer
 // (bench/firstPictureProbe.ts --trace) that was a 90 ms swap every 270 ms, and an input
 // that came during one had its WebGPU calls held back until it ended.
 //
