@@ -6,6 +6,7 @@ import {
   Ladder,
   PREVIEW_WORK_SHARE,
   RefinementState,
+  showsWhenStale,
   TimeSlicer,
   whenIdle,
   yieldToPage,
@@ -200,6 +201,30 @@ describe('RefinementState', () => {
       // The next render is stage 0 for the new inputs, not a continuation of the stale one.
       expect(state.request()).toMatchObject({ stage: 0, background: false });
     }
+  });
+
+  it('a stale first picture is shown during a drag, a stale later stage or background frame is not', () => {
+    const state = new RefinementState();
+    state.input();
+    const first = state.request();
+    expect(showsWhenStale(first)).toBe(true);
+    expect(state.report('frame', first.version)).toBe('frame');
+    const second = state.request();
+    expect(second.stage).toBe(1);
+    expect(showsWhenStale(second)).toBe(false);
+    expect(state.report('background', second.version)).toBe('background');
+    const background = state.request();
+    expect(background).toMatchObject({ stage: 2, background: true });
+    expect(showsWhenStale(background)).toBe(false);
+    // An input while the next first picture is drawn: shown, but it neither settles the
+    // widget nor continues; the new inputs' stage 0 follows.
+    state.input();
+    const dragged = state.request();
+    state.input();
+    expect(showsWhenStale(dragged)).toBe(true);
+    expect(state.report('frame', dragged.version)).toBe(null);
+    expect(state.settled).toBe(false);
+    expect(state.request()).toMatchObject({ stage: 0, background: false });
   });
 
   it('a job report before the picture was complete keeps it unsettled; a restart unsettles', () => {

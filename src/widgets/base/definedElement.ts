@@ -10,7 +10,7 @@ import { BackendChooser, gpuFailureReason, type Backend } from './backend.ts';
 import { tagName, type FrameBackend, type Readouts, type WidgetDefinition } from './definition.ts';
 import { timingLabel } from './timing.ts';
 import { ReadoutList } from './readoutList.ts';
-import { RefinementState, whenIdle, type FrameRequest } from './refinement.ts';
+import { RefinementState, showsWhenStale, whenIdle, type FrameRequest } from './refinement.ts';
 import type {
   CanvasOptions,
   ManagedCanvas,
@@ -102,7 +102,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
 
   /** Input versions, stages and settledness (refinement.ts). */
   private readonly refinement = new RefinementState();
-  /** Aborted on the next input (ViewContext.inputSignal, FrameRequest.signal). */
+  /** Aborted on the next input (ViewContext.inputSignal; FrameRequest.signal after stage 0). */
   private inputAborter = new AbortController();
 
   /** The children the element had before its first shell (see ViewContext.content). */
@@ -270,7 +270,12 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   private nextRequest(): FrameRequest & { version: number } {
     const { stage, version, background } = this.refinement.request();
     this.dataset['settled'] = String(this.refinement.settled);
-    return { stage, background, version, signal: this.inputAborter.signal };
+    // A first picture runs to its end and is shown even when inputs came meanwhile
+    // (showsWhenStale): its signal aborts only when the widget is destroyed.
+    const signal = showsWhenStale({ stage, background })
+      ? this.aborter.signal
+      : this.inputAborter.signal;
+    return { stage, background, version, signal };
   }
 
   /**
@@ -283,6 +288,15 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     whenIdle(() => {
       if (!destroyed.aborted && this.refinement.wantsBackground(version)) this.scheduleRender();
     });
+  }
+
+  /**
+   * Whether a render that threw was for inputs that changed meanwhile: it gave up (a later
+   * stage aborted, or a first picture whose job listened to the live input signal,
+   * ViewContext.inputSignal), and the render for the new inputs draws next. Not a failure.
+   */
+  private gaveUp(request: FrameRequest & { version: number }): boolean {
+    return request.signal.aborted || request.version !== this.refinement.inputVersion;
   }
 
   protected async render(): Promise<void> {
@@ -302,14 +316,14 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       try {
         frame = await view.renderGpu(backend.renderer, backend.gpu, request);
       } catch (error) {
-        if (request.signal.aborted) return; // a stale stage gave up: the next input draws
+        if (this.gaveUp(request)) return;
         this.fallBackToCpu(gpuFailureReason(error));
         return;
       }
       this.clearNotice('backend');
-      // Drawn for inputs that changed meanwhile: not reported (its readouts and stage
-      // would describe what the reader no longer asks for, and data-frames would count it
-      // as the input's picture); the render the input scheduled comes next.
+      // A later stage drawn for inputs that changed meanwhile is not reported (its picture
+      // and readouts would be older than the first picture the input scheduled next). A
+      // first picture is (showsWhenStale): its report neither settles nor continues.
       if (request.signal.aborted) return;
       if (frame !== null)
         this.report(
@@ -327,7 +341,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     try {
       frame = (await view.renderCpu?.(request)) ?? null;
     } catch (error) {
-      if (request.signal.aborted) return; // a stale stage gave up: the next input draws
+      if (this.gaveUp(request)) return;
       throw error;
     }
     if (request.signal.aborted) return; // stale, as above

@@ -2,7 +2,7 @@
 // frame budget (a coarse rung: fewer pixels, samples or steps), then refines it in
 // later frames up to full quality, each stage one frame of its own so that the page
 // paints and takes input in between. The base element (definedElement.ts) counts the
-// stages, restarts at stage 0 on every input and aborts a stale stage's signal; a view
+// stages, restarts at stage 0 on every input and aborts a stale later stage's signal; a view
 // chooses what each stage draws, usually with a Ladder, and says through
 // WidgetView.refinement which stage a frame is and whether more will come. A picture
 // that is complete for what the reader asked may still improve by itself (a Monte
@@ -30,13 +30,31 @@ export const REFINE_STAGE_MS = 250;
 export interface FrameRequest {
   /** 0: the first frame after an input (within the first-picture budget); then 1, 2, …. */
   readonly stage: number;
-  /** Aborted when the inputs change again: a stale stage may stop early. */
+  /**
+   * Aborted when the inputs change again and this frame will not be shown, so it may stop
+   * early: a later stage or a background frame. A first picture's (showsWhenStale) aborts
+   * only when the widget is destroyed.
+   */
   readonly signal: AbortSignal;
   /**
    * True when the last frame was complete and asked for background refinement: this
    * frame improves a settled picture (the view may keep it small; an input cancels it).
    */
   readonly background?: boolean;
+}
+
+/**
+ * Whether a frame drawn for inputs that changed meanwhile is still finished and shown: a
+ * first picture (stage 0, not background) is. During a drag every input comes before the
+ * last one's picture is done (inputs 16–50 ms apart, first pictures 20–90 ms on
+ * SwiftShader), and dropping each of them froze the picture for the whole drag
+ * (beer-law: 1 frame shown in a 1 s drag of 20 inputs, 16 drawn and dropped). It shows
+ * its own inputs' picture and readouts, never settles the widget or asks for more
+ * (RefinementState.report), and the latest inputs' first picture starts right after it.
+ * A later stage or a background frame is dropped: that first picture comes next.
+ */
+export function showsWhenStale(request: { stage: number; background?: boolean }): boolean {
+  return request.stage === 0 && request.background !== true;
 }
 
 /**

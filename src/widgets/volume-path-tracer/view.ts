@@ -183,7 +183,13 @@ export function createView(
   let paused = false;
   let run: Run | null = null;
   const references = new Map<string, ReferenceJob>();
-  const inputSignal = (): AbortSignal => context.inputSignal;
+  /**
+   * The signal of the frame being drawn (FrameRequest.signal), which its CPU passes listen
+   * to: a first picture's runs on through later inputs and is shown (showsWhenStale); a
+   * later stage's aborts on the next input, as the input signal does.
+   */
+  let frameSignal: AbortSignal = context.inputSignal;
+  const inputSignal = (): AbortSignal => frameSignal;
 
   const dropViews = (): void => {
     for (const order of ORDERS) views[order]?.view.destroy();
@@ -689,6 +695,7 @@ export function createView(
   ): Promise<VolumePathTracerFrame | null> => {
     // Captured: the context's signal is a fresh one once the widget is destroyed.
     const signal = context.signal;
+    frameSignal = request.signal;
     const inputs = inputsFrom(context.values);
     const key = `${backend.kind}|${sceneKey(inputs)}`;
     try {
