@@ -10,7 +10,13 @@ import { BackendChooser, gpuFailureReason, type Backend } from './backend.ts';
 import { tagName, type FrameBackend, type Readouts, type WidgetDefinition } from './definition.ts';
 import { timingLabel } from './timing.ts';
 import { ReadoutList } from './readoutList.ts';
-import { RefinementState, showsWhenStale, whenIdle, type FrameRequest } from './refinement.ts';
+import {
+  firstPictureBudget,
+  RefinementState,
+  showsWhenStale,
+  whenIdle,
+  type FrameRequest,
+} from './refinement.ts';
 import type {
   CanvasOptions,
   ManagedCanvas,
@@ -104,6 +110,8 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   private readonly refinement = new RefinementState();
   /** Aborted on the next input (ViewContext.inputSignal; FrameRequest.signal after stage 0). */
   private inputAborter = new AbortController();
+  /** The first picture being drawn (FrameRequest.signal of stage 0) and when it started. */
+  private firstPicture: { aborter: AbortController; started: number } | null = null;
 
   /** The children the element had before its first shell (see ViewContext.content). */
   private content: readonly Element[] | null = null;
@@ -132,6 +140,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
    */
   destroy(): void {
     this.aborter.abort();
+    this.firstPicture?.aborter.abort();
     this.releaseRenderer();
     this.backends.reset();
     this.view?.destroy?.();
@@ -167,11 +176,22 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       if (value !== undefined && this.values[name] !== value) super.setValue(name, String(value));
   }
 
-  /** New parameters: the stale stage's signal aborts, and the next frame is stage 0. */
+  /**
+   * New parameters: the stale stage's signal aborts, and so does a first picture in flight
+   * that is already past the first-picture budget (a rung that cost more than the ladder
+   * predicted: transfer-function's CPU preview at the drag's smallest step took 1.3 s and
+   * held the drag's pictures back); the next frame is stage 0.
+   */
   protected override onInput(): void {
     this.refinement.input();
     this.inputAborter.abort();
     this.inputAborter = new AbortController();
+    const first = this.firstPicture;
+    if (
+      first &&
+      performance.now() - first.started > firstPictureBudget(this.drawnOnGpu ? 'gpu' : 'cpu')
+    )
+      first.aborter.abort();
     this.dataset['settled'] = 'false';
   }
 
@@ -270,12 +290,13 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   private nextRequest(): FrameRequest & { version: number } {
     const { stage, version, background } = this.refinement.request();
     this.dataset['settled'] = String(this.refinement.settled);
+    if (!showsWhenStale({ stage, background }))
+      return { stage, background, version, signal: this.inputAborter.signal };
     // A first picture runs to its end and is shown even when inputs came meanwhile
-    // (showsWhenStale): its signal aborts only when the widget is destroyed.
-    const signal = showsWhenStale({ stage, background })
-      ? this.aborter.signal
-      : this.inputAborter.signal;
-    return { stage, background, version, signal };
+    // (showsWhenStale), unless it is overdue (onInput) or the widget is destroyed.
+    const aborter = new AbortController();
+    this.firstPicture = { aborter, started: performance.now() };
+    return { stage, background, version, signal: aborter.signal };
   }
 
   /**
@@ -308,6 +329,17 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       return;
     }
     const request = this.nextRequest();
+    try {
+      await this.renderRequest(view, request);
+    } finally {
+      if (this.firstPicture?.aborter.signal === request.signal) this.firstPicture = null;
+    }
+  }
+
+  private async renderRequest(
+    view: WidgetView<Frame>,
+    request: FrameRequest & { version: number },
+  ): Promise<void> {
     const { version } = request;
     const backend: Backend<unknown> = await this.backends.choose();
     this.drawnOnGpu = backend.kind === 'gpu' && view.renderGpu !== undefined;

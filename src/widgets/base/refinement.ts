@@ -33,7 +33,8 @@ export interface FrameRequest {
   /**
    * Aborted when the inputs change again and this frame will not be shown, so it may stop
    * early: a later stage or a background frame. A first picture's (showsWhenStale) aborts
-   * only when the widget is destroyed.
+   * only on an input that comes after the first-picture budget has passed, or when the
+   * widget is destroyed.
    */
   readonly signal: AbortSignal;
   /**
@@ -51,7 +52,9 @@ export interface FrameRequest {
  * (beer-law: 1 frame shown in a 1 s drag of 20 inputs, 16 drawn and dropped). It shows
  * its own inputs' picture and readouts, never settles the widget or asks for more
  * (RefinementState.report), and the latest inputs' first picture starts right after it.
- * A later stage or a background frame is dropped: that first picture comes next.
+ * A later stage or a background frame is dropped: that first picture comes next; so is a
+ * first picture still drawing past the first-picture budget when an input comes (a rung
+ * that cost more than predicted would hold the drag's pictures back).
  */
 export function showsWhenStale(request: { stage: number; background?: boolean }): boolean {
   return request.stage === 0 && request.background !== true;
