@@ -8,7 +8,7 @@
 // with the most inclusive time (a function counted once per sample) and the most
 // self time are printed. "(program)" is the browser's own work in the renderer
 // (layout, paint, canvas rasterisation), "(garbage collector)" V8's.
-//   npx tsx bench/dragProfile.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--over=40]
+//   npx tsx bench/dragProfile.ts --dist=DIR --widget=NAME [--backend=gpu|cpu] [--over=40] [--page=PATH]
 import { chromium } from 'playwright-core';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM_PATH, WEBGPU_ARGS } from '../scripts/chromium.mjs';
@@ -41,6 +41,8 @@ const dist = option('dist');
 const widget = option('widget');
 const backend = option('backend', 'gpu');
 const overMs = Number(option('over', '40'));
+/** With --page=PATH (e.g. chapters/03-….html), the widget is dragged on that book page, not its embed page. */
+const pagePath = process.argv.find((arg) => arg.startsWith('--page='))?.slice(7);
 /** With --trace=FILE, a Chromium trace of the drag (the browser's own work, by event) is written too. */
 const traceFile = process.argv.find((arg) => arg.startsWith('--trace='))?.slice(8);
 
@@ -59,7 +61,7 @@ try {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   const page = await context.newPage();
   const query = backend === 'cpu' ? '?backend=cpu' : '';
-  await page.goto(`${base}/embed/${widget}.html${query}`);
+  await page.goto(`${base}/${pagePath ?? `embed/${widget}.html`}${query}`);
   const tag = `sb-${widget}`;
   await page.locator(tag).first().scrollIntoViewIfNeeded();
   const settled = async (): Promise<void> => {

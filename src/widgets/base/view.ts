@@ -78,7 +78,11 @@ export interface ViewContext<Renderer = unknown> {
   readonly widgetId: string;
   /** Aborted when the widget is destroyed: long jobs stop on it. */
   readonly signal: AbortSignal;
-  /** Aborted when the parameters change again (a stale stage or job step may stop early). */
+  /**
+   * Aborted when the parameters change again (a stale stage or job step may stop early).
+   * A frame's own work listens to FrameRequest.signal instead: a first picture's runs on
+   * through a drag and is shown (refinement.ts showsWhenStale).
+   */
   readonly inputSignal: AbortSignal;
 }
 
