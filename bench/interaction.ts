@@ -42,7 +42,6 @@ import {
   changeValues,
   dragValues,
   firstShown,
-  framesBetween,
   judgeChange,
   longestTask,
   observation,
@@ -264,7 +263,7 @@ async function drag(
   page: Page,
   values: readonly string[],
   interval: number,
-): Promise<{ times: number[]; frames0: number; framesAtLast: number }> {
+): Promise<{ times: number[]; frames0: number; framesAtLast: number; shown: number }> {
   return page.evaluate(
     async ({ values, interval }) => {
       const state = (window as unknown as { __sbBench: BenchState }).__sbBench;
@@ -272,6 +271,11 @@ async function drag(
       if (!control) throw new Error('no control');
       const el = state.el;
       const frames0 = Number(el.dataset['frames'] ?? el.dataset['rendered'] ?? 0);
+      // Every frame shown: the current inputs' and a drag's earlier inputs' (data-stale-frames).
+      const allShown = (): number =>
+        Number(el.dataset['frames'] ?? el.dataset['rendered'] ?? 0) +
+        Number(el.dataset['staleFrames'] ?? 0);
+      const shown0 = allShown();
       const times: number[] = [];
       let framesAtLast = frames0;
       const start = performance.now();
@@ -285,7 +289,8 @@ async function drag(
           new Event(control.localName === 'select' ? 'change' : 'input', { bubbles: true }),
         );
       }
-      return { times, frames0, framesAtLast };
+      await new Promise((resolve) => setTimeout(resolve, interval));
+      return { times, frames0, framesAtLast, shown: allShown() - shown0 };
     },
     { values, interval },
   );
@@ -432,7 +437,7 @@ async function measureWidget(
       'full quality after drag ms': 'not measured',
     };
     if (!capped) {
-      const { times, frames0, framesAtLast } = await drag(page, dragged, DRAG_INTERVAL_MS);
+      const { times, framesAtLast, shown } = await drag(page, dragged, DRAG_INTERVAL_MS);
       const first = times[0] ?? 0;
       const last = times[times.length - 1] ?? first;
       const outcome = await recording.waitSettled(last, framesAtLast, QUIET_MS, capMs);
@@ -444,7 +449,7 @@ async function measureWidget(
       dragCells = {
         'longest task during drag ms': longestTask(tasks) ?? 'none',
         'total blocking ms': totalBlockingTime(tasks),
-        'frames during drag': framesBetween(recording.log, first, last + DRAG_INTERVAL_MS, frames0),
+        'frames during drag': shown,
         'full quality after drag ms': outcome.settled
           ? outcome.settled.t - last
           : `${beyond(capMs)}${capLabel}`,
@@ -589,7 +594,7 @@ export async function benchInteraction(options: InteractionOptions): Promise<Ben
             ? `settled: data-settled = "true"; where the build has no data-settled (${quietJudged.join(', ')}), the frame counter moved and then stayed still for ${QUIET_MS / 1000} s (full quality = its last move).`
             : 'settled: data-settled = "true" after the input\'s first frame.',
           `settled counts once data-settled = "true" has held ${CONFIRM_MS} ms; a widget not settled ${LOAD_CAP_MS / 1000} s after loading is measured all the same, waiting ${UNSETTLED_WAIT_MS / 1000} s for full quality after each input (the row says so).`,
-          `drag: ${DRAG_INPUTS} input events ${DRAG_INTERVAL_MS} ms apart from the slider's min to max; long tasks (PerformanceObserver "longtask", ≥ 50 ms) from the first input until settled; total blocking = Σ (duration − 50 ms); frames during drag = frames shown in the drag's ${(DRAG_INPUTS * DRAG_INTERVAL_MS) / 1000} s; full quality after drag is from the last input.`,
+          `drag: ${DRAG_INPUTS} input events ${DRAG_INTERVAL_MS} ms apart from the slider's min to max; long tasks (PerformanceObserver "longtask", ≥ 50 ms) from the first input until settled; total blocking = Σ (duration − 50 ms); frames during drag = frames shown from the first input to one interval after the last (data-frames and data-stale-frames: a first picture of earlier inputs is shown too); full quality after drag is from the last input.`,
           'frame cost reported: data-frame-ms (removed before each change) at full quality (the latest, where a change never settled), median, with data-frame-timer.',
           `load probe: ms for a fixed loop of ${PROBE_ITERATIONS.toExponential(0)} square roots in the page after loading: larger means the machine was busier while that row was measured (compare rows and runs by it; it does not correct the times).`,
         ],

@@ -28,6 +28,14 @@ import { WidgetElement } from './widgetElement.ts';
 import { context2d } from './canvas2d.ts';
 
 /**
+ * A first picture still drawing this many first-picture budgets after it started is
+ * dropped on the next input (onInput). Not 1: on a loaded machine a preview that takes
+ * somewhat longer than the budget would be aborted at every input, and the aborted render
+ * teaches its ladder nothing, so the drag would freeze again.
+ */
+const OVERDUE_FACTOR = 3;
+
+/**
  * How long a disconnected widget waits before it releases its resources. A move is a
  * disconnect and a connect in the same task; a widget put back later is built anew.
  */
@@ -178,7 +186,7 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
 
   /**
    * New parameters: the stale stage's signal aborts, and so does a first picture in flight
-   * that is already past the first-picture budget (a rung that cost more than the ladder
+   * that is already OVERDUE_FACTOR times past the first-picture budget (a rung that cost more than the ladder
    * predicted: transfer-function's CPU preview at the drag's smallest step took 1.3 s and
    * held the drag's pictures back); the next frame is stage 0.
    */
@@ -187,11 +195,8 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     this.inputAborter.abort();
     this.inputAborter = new AbortController();
     const first = this.firstPicture;
-    if (
-      first &&
-      performance.now() - first.started > firstPictureBudget(this.drawnOnGpu ? 'gpu' : 'cpu')
-    )
-      first.aborter.abort();
+    const overdue = OVERDUE_FACTOR * firstPictureBudget(this.drawnOnGpu ? 'gpu' : 'cpu');
+    if (first && performance.now() - first.started > overdue) first.aborter.abort();
     this.dataset['settled'] = 'false';
   }
 
@@ -290,13 +295,14 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   private nextRequest(): FrameRequest & { version: number } {
     const { stage, version, background } = this.refinement.request();
     this.dataset['settled'] = String(this.refinement.settled);
+    const inputsChanged = this.inputAborter.signal;
     if (!showsWhenStale({ stage, background }))
-      return { stage, background, version, signal: this.inputAborter.signal };
+      return { stage, background, version, signal: inputsChanged, inputsChanged };
     // A first picture runs to its end and is shown even when inputs came meanwhile
     // (showsWhenStale), unless it is overdue (onInput) or the widget is destroyed.
     const aborter = new AbortController();
     this.firstPicture = { aborter, started: performance.now() };
-    return { stage, background, version, signal: aborter.signal };
+    return { stage, background, version, signal: aborter.signal, inputsChanged };
   }
 
   /**
@@ -401,7 +407,12 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
    * when the page is idle; a job's report (no version) is the job's own business.
    */
   private report(frame: Frame, backend: FrameBackend, version?: number): void {
-    this.dataset['frames'] = String(Number(this.dataset['frames'] ?? '0') + 1);
+    // data-frames counts the frames of the current inputs, so that "the next frame after
+    // an input" is that input's (tests, bench/interaction.ts); a first picture of a drag's
+    // earlier inputs (showsWhenStale) counts in data-stale-frames.
+    const counter =
+      version !== undefined && version !== this.refinement.inputVersion ? 'staleFrames' : 'frames';
+    this.dataset[counter] = String(Number(this.dataset[counter] ?? '0') + 1);
     const refinement = this.view?.refinement?.(frame);
     const pending = refinement?.pending ?? null;
     this.dataset['stage'] = refinement?.label ?? 'full';

@@ -38,6 +38,12 @@ export interface FrameRequest {
    */
   readonly signal: AbortSignal;
   /**
+   * Aborted once the inputs change after this request, whatever the stage: a view starts
+   * no side work (a reference, an analysis, a saved measurement) from a frame whose
+   * inputs are already stale, though the frame itself may still be shown.
+   */
+  readonly inputsChanged: AbortSignal;
+  /**
    * True when the last frame was complete and asked for background refinement: this
    * frame improves a settled picture (the view may keep it small; an input cancels it).
    */

@@ -523,7 +523,9 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
       renderer,
       refinement: ladder.refinement(choice),
     };
-    if (choice.final) lastFrame = frame;
+    // A frame of a drag's earlier inputs (shown, refinement.ts showsWhenStale) is not the
+    // one the reference, the error image and the saving compare against.
+    if (choice.final && !request.inputsChanged.aborted) lastFrame = frame;
     return frame;
   };
 
@@ -713,6 +715,11 @@ export function createView(context: ViewContext<Renderer>): WidgetView<TransferF
         if (inputs.panel === 'steps') showSteps(image);
         else paintImage(errorCanvas, image.size, () => [4, 6, 16]);
         for (const key of ['rmse', 'max-error', 'saving']) set(key, 'after the preview…');
+        return;
+      }
+      if (frame !== lastFrame) {
+        // Stale (a drag's earlier inputs): the analysis is for the newest inputs' frame.
+        for (const key of ['rmse', 'max-error', 'saving']) set(key, 'after the drag…');
         return;
       }
       analyse(frame);

@@ -470,6 +470,8 @@ export function createView(
     drawn: Pictures,
     frame: Omit<TranslucentFrame, 'size' | 'octree' | 'meanVisited' | 'exact'>,
     exactMs: number | null,
+    /** Aborted when the inputs changed since this frame's request (FrameRequest.inputsChanged). */
+    inputsChanged: AbortSignal,
   ): TranslucentFrame => {
     pictures = drawn;
     const exposure = Number(context.values['exposure']);
@@ -495,7 +497,11 @@ export function createView(
           : null,
     };
 
-    if (!cpuOnly) {
+    // A frame of a drag's earlier inputs (shown, refinement.ts showsWhenStale) leaves the
+    // reference alone: it would key it by the newest inputs and accumulate this scene in it.
+    if (inputsChanged.aborted) {
+      // Nothing: the newest inputs' full frame keys and runs the reference.
+    } else if (!cpuOnly) {
       const key = referenceKey(context.values);
       const target = 2 ** Number(context.values['spp']);
       if (reference?.key !== key) {
@@ -790,6 +796,7 @@ export function createView(
           gather: { milliseconds: gather.milliseconds, timing: gather.timing as GpuTiming },
         },
         exact.milliseconds,
+        request.inputsChanged,
       );
     },
     async renderCpu(request) {
@@ -813,7 +820,7 @@ export function createView(
       };
       if (!choice.final)
         return finishPreview(shown, state, pictures, times, ladder.refinement(choice));
-      return finishFrame(shown, state, pictures, times, null);
+      return finishFrame(shown, state, pictures, times, null, request.inputsChanged);
     },
     onCpuFallback(reason) {
       cancelReference(`stopped: ${reason}`);
