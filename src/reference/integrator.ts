@@ -61,6 +61,8 @@ export const SCENE_MEDIUM_GRID = 1;
 export const SCENE_BOUNDS_BOX = 0;
 export const SCENE_BOUNDS_SPHERE = 1;
 export const PATH_MAX_VERTICES = 1024;
+/** Russian roulette plays after this scattering order and later ones (integrator.wesl ROULETTE_START_ORDER). */
+export const ROULETTE_START_ORDER = 3;
 export const FLIGHT_PASSED = 0;
 export const FLIGHT_ABSORBED = 1;
 export const FLIGHT_SCATTERED = 2;
@@ -953,15 +955,18 @@ export function mediumFreeFlight(
     const pn = averageComponent(mul(sigmaN, flight.weight));
     const total = pa + ps + pn;
     const xi = rngNextFloat(state) * total;
-    if (!(total > 0) || xi < pa || (ps <= 0 && pn <= 0)) {
+    // A real collision scatters with the albedo as weight; it absorbs only where nothing
+    // scatters (integrator.wesl mediumFreeFlight).
+    const real = xi < pa + ps || pn <= 0;
+    if (!(total > 0) || (real && !(ps > 0))) {
       flight.t = t;
       flight.event = FLIGHT_ABSORBED;
       return flight;
     }
-    if (xi < pa + ps || pn <= 0) {
+    if (real) {
       flight.t = t;
       flight.event = FLIGHT_SCATTERED;
-      flight.weight = scale(mul(flight.weight, sigmaS), total / (majorant * ps));
+      flight.weight = scale(mul(flight.weight, sigmaS), total / (majorant * (pa + ps)));
       return flight;
     }
     flight.weight = scale(mul(flight.weight, sigmaN), total / (majorant * pn));
@@ -1049,13 +1054,13 @@ export function pathTracingStep(scene: SceneData, path: TracedPath, state: RngSt
 
 /**
  * The end of a path tracer's segment after its vertex (integrator.wesl tracedPathRoulette):
- * Russian roulette with survival q = min(1, max channel of w), survivors w /= q, the
- * number drawn only when q < 1; then the cap of PATH_MAX_VERTICES segments (counted). True
+ * from the ROULETTE_START_ORDER-th scattering on, Russian roulette with survival
+ * q = min(1, max channel of w), survivors w /= q, the number drawn only when it plays; then the cap of PATH_MAX_VERTICES segments (counted). True
  * when the path ends here.
  */
 export function tracedPathRoulette(scene: SceneData, path: TracedPath, state: RngState): boolean {
   const survival = Math.min(maxComponent(path.weight), 1);
-  if (survival < 1) {
+  if (survival < 1 && path.order >= ROULETTE_START_ORDER) {
     if (!(rngNextFloat(state) < survival)) return true;
     path.weight = scale(path.weight, 1 / survival);
   }
