@@ -272,10 +272,9 @@ async function drag(
       const el = state.el;
       const frames0 = Number(el.dataset['frames'] ?? el.dataset['rendered'] ?? 0);
       // Every frame shown: the current inputs' and a drag's earlier inputs' (data-stale-frames).
-      const allShown = (): number =>
-        Number(el.dataset['frames'] ?? el.dataset['rendered'] ?? 0) +
-        Number(el.dataset['staleFrames'] ?? 0);
-      const shown0 = allShown();
+      // Written out, not a named helper: tsx names functions with an __name() call that the
+      // page does not have.
+      const shown0 = frames0 + Number(el.dataset['staleFrames'] ?? 0);
       const times: number[] = [];
       let framesAtLast = frames0;
       const start = performance.now();
@@ -290,7 +289,11 @@ async function drag(
         );
       }
       await new Promise((resolve) => setTimeout(resolve, interval));
-      return { times, frames0, framesAtLast, shown: allShown() - shown0 };
+      const shown =
+        Number(el.dataset['frames'] ?? el.dataset['rendered'] ?? 0) +
+        Number(el.dataset['staleFrames'] ?? 0) -
+        shown0;
+      return { times, frames0, framesAtLast, shown };
     },
     { values, interval },
   );
