@@ -61,7 +61,7 @@ export const SCENE_MEDIUM_GRID = 1;
 export const SCENE_BOUNDS_BOX = 0;
 export const SCENE_BOUNDS_SPHERE = 1;
 export const PATH_MAX_VERTICES = 1024;
-/** Russian roulette plays after this scattering order and later ones (integrator.wesl ROULETTE_START_ORDER). */
+/** Roulette plays after this scattering order and later (integrator.wesl ROULETTE_START_ORDER). */
 export const ROULETTE_START_ORDER = 3;
 export const FLIGHT_PASSED = 0;
 export const FLIGHT_ABSORBED = 1;
@@ -1055,8 +1055,8 @@ export function pathTracingStep(scene: SceneData, path: TracedPath, state: RngSt
 /**
  * The end of a path tracer's segment after its vertex (integrator.wesl tracedPathRoulette):
  * from the ROULETTE_START_ORDER-th scattering on, Russian roulette with survival
- * q = min(1, max channel of w), survivors w /= q, the number drawn only when it plays; then the cap of PATH_MAX_VERTICES segments (counted). True
- * when the path ends here.
+ * q = min(1, max channel of w), survivors w /= q, the number drawn only when it plays;
+ * then the cap of PATH_MAX_VERTICES segments (counted). True when the path ends here.
  */
 export function tracedPathRoulette(scene: SceneData, path: TracedPath, state: RngState): boolean {
   const survival = Math.min(maxComponent(path.weight), 1);

@@ -120,6 +120,8 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
   private inputAborter = new AbortController();
   /** The first picture being drawn (FrameRequest.signal of stage 0) and when it started. */
   private firstPicture: { aborter: AbortController; started: number } | null = null;
+  /** The signal of the latest frame requested (ViewContext.frameSignal). */
+  private frameSignal: AbortSignal | null = null;
 
   /** The children the element had before its first shell (see ViewContext.content). */
   private content: readonly Element[] | null = null;
@@ -186,9 +188,9 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
 
   /**
    * New parameters: the stale stage's signal aborts, and so does a first picture in flight
-   * that is already OVERDUE_FACTOR times past the first-picture budget (a rung that cost more than the ladder
-   * predicted: transfer-function's CPU preview at the drag's smallest step took 1.3 s and
-   * held the drag's pictures back); the next frame is stage 0.
+   * that started more than OVERDUE_FACTOR first-picture budgets ago (a rung that cost more
+   * than its ladder predicted: transfer-function's CPU preview at the drag's smallest step
+   * took 1.3 s and held the drag's pictures back); the next frame is stage 0.
    */
   protected override onInput(): void {
     this.refinement.input();
@@ -238,6 +240,9 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
       },
       get inputSignal() {
         return element.inputAborter.signal;
+      },
+      get frameSignal() {
+        return element.frameSignal ?? element.inputAborter.signal;
       },
       host: this,
       backend: () => this.backends.choose(),
@@ -296,13 +301,16 @@ export abstract class DefinedWidgetElement<Frame> extends WidgetElement {
     const { stage, version, background } = this.refinement.request();
     this.dataset['settled'] = String(this.refinement.settled);
     const inputsChanged = this.inputAborter.signal;
-    if (!showsWhenStale({ stage, background }))
-      return { stage, background, version, signal: inputsChanged, inputsChanged };
-    // A first picture runs to its end and is shown even when inputs came meanwhile
-    // (showsWhenStale), unless it is overdue (onInput) or the widget is destroyed.
-    const aborter = new AbortController();
-    this.firstPicture = { aborter, started: performance.now() };
-    return { stage, background, version, signal: aborter.signal, inputsChanged };
+    let signal = inputsChanged;
+    if (showsWhenStale({ stage, background })) {
+      // A first picture runs to its end and is shown even when inputs came meanwhile,
+      // unless it is overdue (onInput) or the widget is destroyed.
+      const aborter = new AbortController();
+      this.firstPicture = { aborter, started: performance.now() };
+      signal = aborter.signal;
+    }
+    this.frameSignal = signal;
+    return { stage, background, version, signal, inputsChanged };
   }
 
   /**

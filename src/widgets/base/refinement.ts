@@ -2,8 +2,8 @@
 // frame budget (a coarse rung: fewer pixels, samples or steps), then refines it in
 // later frames up to full quality, each stage one frame of its own so that the page
 // paints and takes input in between. The base element (definedElement.ts) counts the
-// stages, restarts at stage 0 on every input and aborts a stale later stage's signal; a view
-// chooses what each stage draws, usually with a Ladder, and says through
+// stages, restarts at stage 0 on every input and aborts a stale later stage's signal; a
+// view chooses what each stage draws, usually with a Ladder, and says through
 // WidgetView.refinement which stage a frame is and whether more will come. A picture
 // that is complete for what the reader asked may still improve by itself (a Monte
 // Carlo image accumulating samples): its frames are 'background' refinement, settled
@@ -33,8 +33,8 @@ export interface FrameRequest {
   /**
    * Aborted when the inputs change again and this frame will not be shown, so it may stop
    * early: a later stage or a background frame. A first picture's (showsWhenStale) aborts
-   * only on an input that comes after the first-picture budget has passed, or when the
-   * widget is destroyed.
+   * only on an input that comes when it is overdue (three first-picture budgets after it
+   * started, definedElement.ts), or when the widget is destroyed.
    */
   readonly signal: AbortSignal;
   /**
@@ -59,8 +59,8 @@ export interface FrameRequest {
  * its own inputs' picture and readouts, never settles the widget or asks for more
  * (RefinementState.report), and the latest inputs' first picture starts right after it.
  * A later stage or a background frame is dropped: that first picture comes next; so is a
- * first picture still drawing past the first-picture budget when an input comes (a rung
- * that cost more than predicted would hold the drag's pictures back).
+ * first picture still drawing three first-picture budgets after it started when an input
+ * comes (a rung that cost more than predicted would hold the drag's pictures back).
  */
 export function showsWhenStale(request: { stage: number; background?: boolean }): boolean {
   return request.stage === 0 && request.background !== true;

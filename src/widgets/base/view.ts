@@ -80,10 +80,15 @@ export interface ViewContext<Renderer = unknown> {
   readonly signal: AbortSignal;
   /**
    * Aborted when the parameters change again (a stale stage or job step may stop early).
-   * A frame's own work listens to FrameRequest.signal instead: a first picture's runs on
-   * through a drag and is shown (refinement.ts showsWhenStale).
+   * A frame's own work listens to frameSignal instead: a first picture's runs on through a
+   * drag and is shown (refinement.ts showsWhenStale).
    */
   readonly inputSignal: AbortSignal;
+  /**
+   * The signal of the frame being drawn (its FrameRequest.signal), for work a render
+   * hands on, such as a CPU pass in the compute worker; the input signal before any frame.
+   */
+  readonly frameSignal: AbortSignal;
 }
 
 export interface WidgetView<Frame, Renderer = unknown> {

@@ -191,13 +191,8 @@ export function createView(
   const kernelTimes = new Map<string, KernelTimes>();
   let remeasure = false;
   const resolvedCache = new Map<string, Promise<ResolvedScene>>();
-  /**
-   * The signal of the frame being drawn (FrameRequest.signal), which its CPU passes listen
-   * to: a first picture's runs on through later inputs and is shown (showsWhenStale); a
-   * later stage's aborts on the next input, as the input signal does.
-   */
-  let frameSignal: AbortSignal = context.inputSignal;
-  const inputSignal = (): AbortSignal => frameSignal;
+  /** The signal a CPU pass listens to: that of the frame being drawn (ViewContext.frameSignal). */
+  const inputSignal = (): AbortSignal => context.frameSignal;
 
   const disposeRun = (): void => {
     run?.main.renderer.destroy();
@@ -569,7 +564,6 @@ export function createView(
   ): Promise<SingleScatterFrame | null> => {
     // Captured: the context's signal is a fresh one once the widget is destroyed.
     const signal = context.signal;
-    frameSignal = request.signal;
     try {
       return await frame(inputsFrom(context.values), backend, request);
     } catch (error) {

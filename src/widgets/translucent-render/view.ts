@@ -497,11 +497,13 @@ export function createView(
           : null,
     };
 
-    // A frame of a drag's earlier inputs (shown, refinement.ts showsWhenStale) leaves the
-    // reference alone: it would key it by the newest inputs and accumulate this scene in it.
-    if (inputsChanged.aborted) {
-      // Nothing: the newest inputs' full frame keys and runs the reference.
-    } else if (!cpuOnly) {
+    if (cpuOnly) {
+      set('path-spp', 'needs WebGPU');
+      if (status) status.textContent = 'The path-traced reference needs WebGPU.';
+      if (runButton) runButton.disabled = true;
+    } else if (!inputsChanged.aborted) {
+      // Not from a frame of a drag's earlier inputs (shown, refinement.ts showsWhenStale):
+      // it would key the reference by the newest inputs and accumulate this scene in it.
       const key = referenceKey(context.values);
       const target = 2 ** Number(context.values['spp']);
       if (reference?.key !== key) {
@@ -519,10 +521,6 @@ export function createView(
         if (!running && !referenceStopped && reference.accumulator.samples < target)
           void continueReference();
       }
-    } else {
-      set('path-spp', 'needs WebGPU');
-      if (status) status.textContent = 'The path-traced reference needs WebGPU.';
-      if (runButton) runButton.disabled = true;
     }
     showReference();
     drawOverlay();

@@ -183,13 +183,8 @@ export function createView(
   let paused = false;
   let run: Run | null = null;
   const references = new Map<string, ReferenceJob>();
-  /**
-   * The signal of the frame being drawn (FrameRequest.signal), which its CPU passes listen
-   * to: a first picture's runs on through later inputs and is shown (showsWhenStale); a
-   * later stage's aborts on the next input, as the input signal does.
-   */
-  let frameSignal: AbortSignal = context.inputSignal;
-  const inputSignal = (): AbortSignal => frameSignal;
+  /** The signal a CPU pass listens to: that of the frame being drawn (ViewContext.frameSignal). */
+  const inputSignal = (): AbortSignal => context.frameSignal;
 
   const dropViews = (): void => {
     for (const order of ORDERS) views[order]?.view.destroy();
@@ -695,7 +690,6 @@ export function createView(
   ): Promise<VolumePathTracerFrame | null> => {
     // Captured: the context's signal is a fresh one once the widget is destroyed.
     const signal = context.signal;
-    frameSignal = request.signal;
     const inputs = inputsFrom(context.values);
     const key = `${backend.kind}|${sceneKey(inputs)}`;
     try {
