@@ -24,6 +24,7 @@ import { plan, type Conditions } from '../src/scene/plan.ts';
 import type { SceneDescription } from '../src/scene/types.ts';
 import { parseScene } from '../src/scene/validate.ts';
 import { median, type BenchTable } from './table.ts';
+import { imageMeanStandardError } from './peerStatistics.ts';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const CACHE = `${ROOT}.cache/peers`;
@@ -275,8 +276,8 @@ interface OurTiming {
   /** Per-sample variance, the mean over pixels and channels of n·SE². */
   sampleVariance: number;
   imageMean: number;
-  /** The variance of imageMean (the mean of SE² over pixels and channels, / pixels·3). */
-  imageMeanVariance: number;
+  /** The standard error of imageMean (imageMeanStandardError of the values' SE²). */
+  imageMeanSe: number;
 }
 
 /** One way of running our kernel: its conditions, and whether Node polls quietly. */
@@ -318,18 +319,13 @@ async function timeOurs(
     const images = await Promise.all(renderers.map((r) => r.accumulation.readImage()));
     return images.map((acc, k) => {
       const mean = acc.mean();
-      const se = acc.standardError();
-      let sum = 0;
-      let variance = 0;
-      for (let i = 0; i < mean.length; i++) {
-        sum += mean[i]!;
-        variance += se[i]! ** 2;
-      }
+      const seSquared = Array.from(acc.standardError(), (se) => se * se);
+      const variance = seSquared.reduce((a, b) => a + b, 0);
       return {
         pathsPerSecond: pixels / (median(times[k]!) / 1000),
-        sampleVariance: (variance * acc.samples) / se.length,
-        imageMean: sum / mean.length,
-        imageMeanVariance: variance / (mean.length * mean.length),
+        sampleVariance: (variance * acc.samples) / seSquared.length,
+        imageMean: mean.reduce((a, b) => a + b, 0) / mean.length,
+        imageMeanSe: imageMeanStandardError(seSquared),
       };
     });
   } finally {
@@ -439,8 +435,10 @@ export async function benchPeers(
     const miPathsPerSecond = (pixels * options.spp) / median(mi.seconds);
     const miVariance = mi.sampleVariance.reduce((a, b) => a + b, 0) / mi.sampleVariance.length;
     const miMean = mi.mean.reduce((a, b) => a + b, 0) / mi.mean.length;
-    // The variance of Mitsuba's mean image: per-sample variance / (images · spp), per value.
-    const miMeanVariance = miVariance / (options.mitsubaImages * options.spp) / mi.mean.length;
+    // The standard error of Mitsuba's mean image: per value, the per-sample variance / (images · spp).
+    const miMeanSe = imageMeanStandardError(
+      mi.sampleVariance.map((v) => v / (options.mitsubaImages * options.spp)),
+    );
     const equalError = (t: OurTiming): number =>
       (t.sampleVariance / miVariance) * (miPathsPerSecond / t.pathsPerSecond);
     const row: BenchTable['rows'][number] = {
@@ -454,7 +452,7 @@ export async function benchPeers(
       'same, previous kernel': oneMedium ? equalError(previous) : null,
       'image mean ours / Mitsuba': `${ours.imageMean.toPrecision(5)} / ${miMean.toPrecision(5)}`,
       'agreement |z| (image mean)':
-        Math.abs(ours.imageMean - miMean) / Math.sqrt(ours.imageMeanVariance + miMeanVariance),
+        Math.abs(ours.imageMean - miMean) / Math.hypot(ours.imageMeanSe, miMeanSe),
     };
     if (options.processes) {
       const scenePath = `${CACHE}/scene-${index}.json`;

@@ -182,6 +182,11 @@ async function evaluateGpu(
     );
   const { evaluateOnGpu, flattenCall, specFor, UnsupportedSignatureError } = evaluator;
   const signature = findSignature(evaluator, library, module, fn);
+  if (signature.conditional)
+    throw new UsageError(
+      `${module}.${fn} exists only in kernels linked with a condition (@if), and the GPU backend's ` +
+        `evaluation kernel links with none. Use --backend cpu to call the float64 twin.`,
+    );
   let spec;
   try {
     spec = specFor(signature);

@@ -288,6 +288,12 @@ export interface FunctionSignature {
   result: WgslType | null;
   /** The signature as one line, e.g. `transmittanceHomogeneous(sigmaT: f32, distance: f32) -> f32`. */
   text: string;
+  /**
+   * Whether the declaration carries a link condition (@if, @elif, @else): such a function
+   * exists only in kernels linked with it (integrator.wesl's scene-grid lookups under
+   * gridMedia), not in an evaluation kernel, which links with none.
+   */
+  conditional: boolean;
 }
 
 /** The library module `shaders/NAME.wesl`'s function declarations, in source order. */
@@ -313,12 +319,16 @@ export function functionsOf(library: ShaderLibrary, module: string): FunctionSig
       const result = decl.returnType ? classifyType(library, text(decl.returnType)) : null;
       const fn = decl.name.ident.originalName;
       const list = params.map((p) => `${p.name}: ${p.type.text}`).join(', ');
+      const conditional = (decl.attributes ?? []).some((a) =>
+        ['@if', '@elif', '@else'].includes(a.attribute.kind),
+      );
       return {
         module,
         fn,
         params,
         result,
         text: `${fn}(${list})${result ? ` -> ${result.text}` : ''}`,
+        conditional,
       };
     });
 }
@@ -374,6 +384,10 @@ function classifyType(library: ShaderLibrary, text: string): WgslType {
  */
 export function specFor(signature: FunctionSignature): FunctionSpec {
   const where = `${signature.module}.${signature.fn}`;
+  if (signature.conditional)
+    throw new UnsupportedSignatureError(
+      `${where} exists only under a link condition (@if), which evaluation kernels do not set`,
+    );
   for (const param of signature.params) {
     if (param.type.unsupported !== null)
       throw new UnsupportedSignatureError(

@@ -26,7 +26,12 @@ import {
   type Light,
   type LightSample,
 } from './lights.ts';
-import { gridDensityTrilinear, gridMajorantAlongRay, type DensityGrid } from './medium.ts';
+import {
+  gridDensityTrilinear,
+  gridHasVolume,
+  gridMajorantAlongSegment,
+  type DensityGrid,
+} from './medium.ts';
 import { dispatchedPhase, phaseTableAt, type PhaseRecord } from '../phase/registry.ts';
 import type { PhaseTable } from './mie.ts';
 import type { Vec3 } from './directions.ts';
@@ -315,6 +320,52 @@ export function integratorInvocationStart(scene: SceneData): OneMediumRecords | 
     : null;
 }
 
+/**
+ * What integrator.wesl sceneGridLoad derives once per invocation from the scene's grid
+ * records (SceneGridCache and sceneMajorantGrid): the map p ↦ u = p ⊙ toSample + offset to
+ * the continuous sample coordinate, which regroups gridTrilinearCorners'
+ * (p − b_min)/(b_max − b_min) ⊙ n − ½; the largest sample index; the buffer strides; the
+ * majorant grid's largest density. A grid without volume gets an empty box (every lookup
+ * outside, density 0) and a one-cell unit majorant grid of densityScale 0 (every majorant 0).
+ * The twin's own lookups use gridDensityTrilinear directly; this mirrors what the kernel
+ * caches, for the tests.
+ */
+export interface SceneGridCache {
+  boundsMin: Vec3;
+  majorantMax: number;
+  boundsMax: Vec3;
+  toSample: Vec3;
+  offset: Vec3;
+  lastSample: Vec3;
+  lastIndex: Vec3;
+  strides: Vec3;
+  majorantGrid: DensityGrid;
+}
+
+export function sceneGridLoad(scene: SceneData): SceneGridCache {
+  const grid = sceneGrid(scene, 'grid');
+  const majorant = sceneGrid(scene, 'majorant');
+  const hasVolume = gridHasVolume(grid);
+  const [nx, ny] = grid.dimensions;
+  const perAxis = (f: (a: 0 | 1 | 2) => number): Vec3 => [f(0), f(1), f(2)];
+  const toSample = perAxis((a) => grid.dimensions[a] / (grid.boundsMax[a] - grid.boundsMin[a]));
+  const last = perAxis((a) => Math.max(grid.dimensions[a], 1) - 1);
+  return {
+    boundsMin: hasVolume ? grid.boundsMin : [1, 1, 1],
+    majorantMax: decoded(scene).records.majorant.maxDensity,
+    boundsMax: hasVolume ? grid.boundsMax : [-1, -1, -1],
+    toSample,
+    offset: perAxis((a) => -grid.boundsMin[a] * toSample[a] - 0.5),
+    lastSample: last,
+    lastIndex: last,
+    strides: [1, nx, nx * ny],
+    majorantGrid:
+      hasVolume && gridHasVolume(majorant)
+        ? majorant
+        : { dimensions: [1, 1, 1], boundsMin: [0, 0, 0], boundsMax: [1, 1, 1], densityScale: 0 },
+  };
+}
+
 export function mediumDensity(scene: SceneData, medium: SceneMedium, p: Vec3): number {
   if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
     scene.stats.lookups += 1;
@@ -325,8 +376,10 @@ export function mediumDensity(scene: SceneData, medium: SceneMedium, p: Vec3): n
 
 /**
  * The scene grid's trilinear density (medium.ts gridDensityTrilinear). The WGSL reads the
- * samples from a storage buffer clamped when uploaded (gridStoredSamples), the twin from
- * scene.density through the same clamp: the same values.
+ * samples clamped and scaled when uploaded (gridScaledSamples) and blends those, from
+ * corners and weights it derives once per invocation (sceneGridLoad); the twin blends
+ * scene.density through the same clamp and scales the result: the same value up to f32
+ * rounding.
  */
 export function sceneGridDensity(scene: SceneData, grid: DensityGrid, p: Vec3): number {
   return gridDensityTrilinear(grid, scene.density, p);
@@ -341,13 +394,13 @@ export function mediumMajorant(
 ): number {
   const sigmaT = maxComponent(add(medium.sigmaA, medium.sigmaS));
   if (on(scene, 'gridMedia') && medium.kind === SCENE_MEDIUM_GRID) {
-    const majorant = gridMajorantAlongRay(
+    // The segment lies in the medium's bounds, which the grid fills.
+    const majorant = gridMajorantAlongSegment(
       sceneGrid(scene, 'majorant'),
       scene.majorant,
       origin,
       direction,
-      segment[0],
-      segment[1],
+      segment,
     );
     if (majorant.capped !== 0) return decoded(scene).records.majorant.maxDensity * sigmaT;
     return majorant.majorant * sigmaT;
@@ -942,6 +995,27 @@ export function mediumFreeFlight(
     }
     t += step;
     const density = mediumDensity(scene, medium, at(origin, direction, t));
+    if (on(scene, 'grayMedia') && !emission) {
+      // Gray σa, σs: the general test below in scalars (integrator.wesl mediumFreeFlight),
+      // except that a throughput of 0 goes on rather than being absorbed.
+      const sigmaT = density * (medium.sigmaA[0] + medium.sigmaS[0]);
+      const real = rngNextFloat(state) * majorant < sigmaT || sigmaT >= majorant;
+      if (real && !(medium.sigmaS[0] > 0)) {
+        flight.t = t;
+        flight.event = FLIGHT_ABSORBED;
+        return flight;
+      }
+      if (real) {
+        flight.t = t;
+        flight.event = FLIGHT_SCATTERED;
+        flight.weight = scale(
+          flight.weight,
+          medium.sigmaS[0] / (medium.sigmaA[0] + medium.sigmaS[0]),
+        );
+        return flight;
+      }
+      continue;
+    }
     const sigmaA = scale(medium.sigmaA, density);
     const sigmaS = scale(medium.sigmaS, density);
     const sigmaN = sigmaA.map((a, c) => Math.max(majorant - a - sigmaS[c]!, 0)) as Rgb;

@@ -230,17 +230,22 @@ export function gridSample(grid: DensityGrid, volume: Float32Array, cell: Vec3):
 }
 
 /**
- * The samples of a grid as gridSample reads them, x fastest: nx·ny·nz values (at least
- * one), each clamped to [0, 1e18], a missing one 0. The scene kernel reads its grid from
- * a storage buffer of these (integrator.wesl sceneDensity), so it clamps nothing per load.
+ * The extinction densities of a grid's samples, x fastest: nx·ny·nz values (at least one),
+ * each the sample as gridSample reads it (clamped to [0, 1e18], a missing one 0) times the
+ * grid's densityScale s, saturating at F32_MAX (saturatingProduct), rounded to f32. The
+ * scene kernel reads its grid from a storage buffer of these (integrator.wesl
+ * sceneDensity), so a lookup neither clamps nor multiplies. Its trilinear blend of s·ρ
+ * equals s times the blend of ρ (gridDensityTrilinear) up to f32 rounding, and rounding
+ * is monotone, so the largest of eight scaled samples is still the scaled majorant.
  */
-export function gridStoredSamples(
+export function gridScaledSamples(
   grid: DensityGrid,
   volume: Float32Array,
 ): Float32Array<ArrayBuffer> {
   const [nx, ny, nz] = grid.dimensions;
   const samples = new Float32Array(Math.max(1, nx * ny * nz));
-  for (let i = 0; i < samples.length; i++) samples[i] = clampDensity(volume[i] ?? 0);
+  for (let i = 0; i < samples.length; i++)
+    samples[i] = saturatingProduct(grid.densityScale, clampDensity(volume[i] ?? 0));
   return samples;
 }
 
@@ -492,6 +497,28 @@ export function gridMajorantAlongRay(
     cellsVisited: visited.length,
     capped: cells.length > GRID_DDA_MAX_CELLS ? 1 : 0,
   };
+}
+
+/**
+ * gridMajorantAlongRay for a segment [t0, t1] that the caller knows to lie in the majorant
+ * grid's closed box (WGSL gridMajorantAlongSegment, the DDA without its slab test): there
+ * the slab test returns the segment itself.
+ */
+export function gridMajorantAlongSegment(
+  majorantGrid: DensityGrid,
+  majorantVolume: Float32Array,
+  origin: Vec3,
+  direction: Vec3,
+  segment: readonly [number, number],
+): GridMajorantSegment {
+  return gridMajorantAlongRay(
+    majorantGrid,
+    majorantVolume,
+    origin,
+    direction,
+    segment[0],
+    segment[1],
+  );
 }
 
 export function gridOpticalDepthConstant(

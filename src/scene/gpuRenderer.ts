@@ -11,7 +11,7 @@ import { sceneRenderKernel } from '../gpu/layouts.generated.ts';
 import { linkLibraryKernel, type KernelLibrary } from '../gpu/link.ts';
 import { GpuTimer } from '../gpu/timing.ts';
 import { PHASE_TABLE_WORDS } from '../phase/registry.ts';
-import { gridStoredSamples, type DensityGridData } from '../reference/medium.ts';
+import { gridScaledSamples, type DensityGridData } from '../reference/medium.ts';
 import { PASS_WORDS_PER_PIXEL, type Accumulation } from './accumulation.ts';
 import { GpuAccumulation } from './gpuAccumulation.ts';
 import type { PackedScene } from './pack.ts';
@@ -59,9 +59,9 @@ function pipelineFor(device: GPUDevice, code: string): Promise<GPUComputePipelin
   });
 }
 
-/** The grid's samples, clamped as gridSample clamps them, in a storage buffer. */
+/** The grid's extinction densities (its samples clamped and scaled, gridScaledSamples) in a storage buffer. */
 function sampleBuffer(device: GPUDevice, data: DensityGridData): GPUBuffer {
-  const samples = gridStoredSamples(data.grid, data.volume);
+  const samples = gridScaledSamples(data.grid, data.volume);
   const buffer = device.createBuffer({
     size: samples.byteLength,
     usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,

@@ -257,6 +257,11 @@ describe('scatterbook: clear errors (exit status 2)', () => {
       message: /parameter state has type ptr<function, u32> \(a pointer\).*--backend cpu/s,
     },
     {
+      name: 'a function that exists only under a link condition, on the GPU',
+      args: ['eval', 'integrator.sceneGridDensity', '--args', '[[0, 0, 0]]'],
+      message: /exists only in kernels linked with a condition \(@if\).*--backend cpu/s,
+    },
+    {
       name: 'a u32 out of range',
       args: ['eval', 'rng.pcgHash', '--args', '[[-1]]'],
       message: /argument 1 \(value: u32\) must be an integer in \[0, 4294967295\]/,
@@ -311,6 +316,7 @@ describe('functionEvaluator signatures (in process, a library of its own)', () =
       'fn sumOf(values: array<f32, SIZE>, offset: i32) -> f32 { return values[0] + values[1] + values[2] + f32(offset); }',
       'fn firstOf(p: Pair) -> f32 { return p.a; }',
       'fn makePair(a: f32) -> Pair { return Pair(a, a); }',
+      '@if(someCondition) fn onlyUnderCondition(x: f32) -> f32 { return x; }',
     ].join('\n'),
   };
 
@@ -322,12 +328,16 @@ describe('functionEvaluator signatures (in process, a library of its own)', () =
       'sumOf(values: array<f32, SIZE>, offset: i32) -> f32',
       'firstOf(p: Pair) -> f32',
       'makePair(a: f32) -> Pair',
+      'onlyUnderCondition(x: f32) -> f32',
     ]);
     expect(functions[2]?.params[0]?.type.components).toBe(3);
     expect(specFor(functions[2] as never).args).toEqual(['f32[3]', 'i32']);
     expect(() => specFor(functions[3] as never)).toThrow(UnsupportedSignatureError);
     expect(() => specFor(functions[3] as never)).toThrow(/parameter p has type Pair \(a struct\)/);
     expect(() => specFor(functions[4] as never)).toThrow(/its result has type Pair/);
+    // An evaluation kernel links with no conditions, where this function does not exist.
+    expect(functions.map((f) => f.conditional)).toEqual([false, false, false, false, false, true]);
+    expect(() => specFor(functions[5] as never)).toThrow(/exists only under a link condition/);
   });
 
   it('passes vecNf arguments through a wrapper and returns vecNf results (on the GPU)', async () => {

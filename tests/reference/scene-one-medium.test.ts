@@ -8,7 +8,7 @@ import { cameraRay } from '../../src/reference/camera.ts';
 import { estimateRadiance, sceneCamera, type SceneData } from '../../src/reference/integrator.ts';
 import { pcgHash, rngNextFloat, rngSeed, type RngState } from '../../src/reference/rng.ts';
 import { packScene, sceneData } from '../../src/scene/pack.ts';
-import { plan } from '../../src/scene/plan.ts';
+import { plan, type Conditions } from '../../src/scene/plan.ts';
 import { boxSceneJson, sceneFrom } from '../support/sceneRender.ts';
 
 const SIZE = 8;
@@ -51,11 +51,12 @@ function gridBoxScene(order: number | 'unlimited') {
 
 async function twins(
   json: unknown,
-  condition: 'oneHomogeneousMedium' | 'oneGridMedium' = 'oneHomogeneousMedium',
+  condition: 'oneHomogeneousMedium' | 'oneGridMedium' | 'grayMedia' = 'oneHomogeneousMedium',
+  also: Partial<Conditions> = {},
 ): Promise<{ specialized: SceneData; general: SceneData }> {
   const resolved = await sceneFrom(json);
-  const conditions = plan(resolved.scene).conditions;
-  expect(conditions[condition], `the plan picks the one-medium kernels (${condition})`).toBe(true);
+  const conditions = { ...plan(resolved.scene).conditions, ...also };
+  expect(conditions[condition], `the plan picks the specialized code (${condition})`).toBe(true);
   const packed = packScene(resolved);
   return {
     specialized: sceneData(packed, conditions),
@@ -171,5 +172,19 @@ describe('one-medium estimators = general estimators, sample by sample (float64 
     // The draws include lookups: the same count on both sides.
     expect(specialized.stats.lookups).toBe(general.stats.lookups);
     expect(specialized.stats.lookups).toBeGreaterThan(0);
+  });
+
+  it('gray media: the free flight’s scalar test (plan condition grayMedia) = the spectral one, in the one-grid and the general path tracer', async () => {
+    const scene = gridBoxScene('unlimited');
+    const gray = {
+      ...scene,
+      media: [{ ...scene.media[0]!, sigmaA: [0.3, 0.3, 0.3], sigmaS: [1.7, 1.7, 1.7] }],
+    };
+    for (const also of [{}, { oneGridMedium: false }]) {
+      const { specialized, general } = await twins(gray, 'grayMedia', also);
+      expect(expectSameSamples(specialized, general)).toBeGreaterThan(SIZE * SIZE * SAMPLES);
+      expect(specialized.stats.lookups).toBe(general.stats.lookups);
+      expect(specialized.stats.lookups).toBeGreaterThan(0);
+    }
   });
 });

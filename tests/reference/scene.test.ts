@@ -401,7 +401,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
       'lightSampleDirectional',
       'sampleFreeFlight',
       'sceneGridDensity',
-      'gridMajorantAlongRay',
+      'gridMajorantAlongSegment',
       'surfaceHitDistance',
       'estimateSingleScattering',
       'estimatePathTracing',
@@ -518,7 +518,7 @@ describe('specialization: disabled effects are absent from the linked WGSL', () 
     for (const fn of [
       'sampleFreeFlight',
       'sceneGridDensity',
-      'gridMajorantAlongRay',
+      'gridMajorantAlongSegment',
       'spotFalloff',
       'surfaceHitDistance',
     ])

@@ -9,6 +9,7 @@ import {
   GRID_DDA_MAX_CELLS,
   gridDensityTrilinear,
   gridHasVolume,
+  gridMajorantAlongSegment,
   gridMajorantBuild,
   gridMajorantLookup,
   gridRayParameter,
@@ -25,6 +26,7 @@ import {
   f32Vec,
   gpuDensity,
   gpuMajorantAlongRay,
+  gpuMajorantAlongSegment,
   gpuMajorantLookup,
   gpuOpticalDepthConstant,
   gpuSegmentInBounds,
@@ -381,6 +383,30 @@ describe('gridMajorantAlongRay: WGSL DDA vs the twin’s plane splitting', () =>
     });
     // The sample must exercise the DDA, not only misses.
     expect(hits).toBeGreaterThan(100);
+  });
+
+  it('gridMajorantAlongSegment on the part of each ray inside the box (as the integrator calls it) = gridMajorantAlongRay, GPU and twin', async () => {
+    // The part inside, from the GPU's own slab test; misses have no such part.
+    const inside = await gpuSegmentInBounds(MAJORANT, rays);
+    const parts = rays.flatMap((r, i) => {
+      const [t0, t1] = inside[i] ?? [1, 0];
+      return t0 <= t1 ? [{ ...r, tMin: t0, tMax: t1 }] : [];
+    });
+    expect(parts.length).toBeGreaterThan(300);
+    const [alongSegment, alongRay] = await Promise.all([
+      gpuMajorantAlongSegment(MAJORANT, parts),
+      gpuMajorantAlongRay(MAJORANT, parts),
+    ]);
+    parts.forEach((r, i) => {
+      const label = `segment ${i}: ${JSON.stringify(r)}`;
+      expect(alongSegment[i], label).toEqual(alongRay[i]);
+      const twin = gridMajorantAlongSegment(MAJORANT.grid, MAJORANT.volume, r.origin, r.direction, [
+        r.tMin,
+        r.tMax,
+      ]);
+      expect(alongSegment[i]?.majorant, label).toBe(Math.fround(twin.majorant));
+      expect(alongSegment[i]?.cellsVisited, label).toBe(twin.cellsVisited);
+    });
   });
 
   it('bounds the density at 64 points along each of 256 segments (GPU and twin)', async () => {

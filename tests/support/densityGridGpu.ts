@@ -22,7 +22,7 @@ import { nodeDevice } from './nodeGpu.ts';
 import { SHADER_LIBRARY } from './shaderLibrary.ts';
 
 const KERNEL = `
-import package::medium::{DensityGrid, gridDensityTrilinear, gridMajorantLookup, gridMajorantAlongRay, gridOpticalDepthConstant, gridSegmentInBounds};
+import package::medium::{DensityGrid, gridDensityTrilinear, gridMajorantLookup, gridMajorantAlongRay, gridMajorantAlongSegment, gridOpticalDepthConstant, gridSegmentInBounds};
 @group(0) @binding(0) var<storage, read> grids: array<u32>;
 @group(0) @binding(1) var<storage, read> records: array<f32>;
 @group(0) @binding(2) var<storage, read_write> outputs: array<u32>;
@@ -55,6 +55,15 @@ fn vecAt(o: u32) -> vec3f { return vec3f(records[o], records[o + 1u], records[o 
   outputs[3u * i + 1u] = r.cellsVisited;
   outputs[3u * i + 2u] = r.capped;
 }
+@compute @workgroup_size(64) fn majorantAlongSegment(@builtin(global_invocation_id) id: vec3u) {
+  let i = id.x;
+  if (3u * i >= arrayLength(&outputs)) { return; }
+  let o = 8u * i;
+  let r = gridMajorantAlongSegment(gridAt(10u), majorantVolume, vecAt(o), vecAt(o + 3u), vec2f(records[o + 6u], records[o + 7u]));
+  outputs[3u * i] = bitcast<u32>(r.majorant);
+  outputs[3u * i + 1u] = r.cellsVisited;
+  outputs[3u * i + 2u] = r.capped;
+}
 @compute @workgroup_size(64) fn opticalDepthConstant(@builtin(global_invocation_id) id: vec3u) {
   let i = id.x;
   if (i >= arrayLength(&outputs)) { return; }
@@ -72,11 +81,17 @@ fn vecAt(o: u32) -> vec3f { return vec3f(records[o], records[o + 1u], records[o 
 `;
 
 type EntryPoint =
-  'density' | 'majorantLookup' | 'majorantAlongRay' | 'opticalDepthConstant' | 'segmentInBounds';
+  | 'density'
+  | 'majorantLookup'
+  | 'majorantAlongRay'
+  | 'majorantAlongSegment'
+  | 'opticalDepthConstant'
+  | 'segmentInBounds';
 const OUTPUT_WORDS: Record<EntryPoint, number> = {
   density: 1,
   majorantLookup: 1,
   majorantAlongRay: 3,
+  majorantAlongSegment: 3,
   opticalDepthConstant: 1,
   segmentInBounds: 2,
 };
@@ -250,6 +265,24 @@ export async function gpuMajorantAlongRay(
   rays: readonly Ray[],
 ): Promise<GridMajorantSegment[]> {
   const words = await runGridKernel('majorantAlongRay', EMPTY_GRID, majorant, rays.map(rayRecord));
+  const floats = new Float32Array(words.buffer);
+  return rays.map((_, i) => ({
+    majorant: floats[3 * i] ?? NaN,
+    cellsVisited: words[3 * i + 1] ?? NaN,
+    capped: words[3 * i + 2] ?? NaN,
+  }));
+}
+/** gridMajorantAlongSegment on the GPU, for rays whose [tMin, tMax] lies in the majorant grid's box. */
+export async function gpuMajorantAlongSegment(
+  majorant: DensityGridData,
+  rays: readonly Ray[],
+): Promise<GridMajorantSegment[]> {
+  const words = await runGridKernel(
+    'majorantAlongSegment',
+    EMPTY_GRID,
+    majorant,
+    rays.map(rayRecord),
+  );
   const floats = new Float32Array(words.buffer);
   return rays.map((_, i) => ({
     majorant: floats[3 * i] ?? NaN,
