@@ -496,7 +496,7 @@ export async function benchPeers(
       '"previous kernel": the plan without the one-medium kernels (oneHomogeneousMedium, oneGridMedium off: the general path tracer or single-scattering estimator), timed pass by pass alternating with the plan’s kernel; — where the plan does not use them.',
       '"dawn.node\'s busy poll": the plan’s kernel awaited as dawn.node does by itself (its main thread spins while SwiftShader works), instead of src/gpu/quietPolling.ts; same kernel, alternating.',
       'Process: the wall time of our `render` command (gpu-env.sh + node scripts/cli.mjs, the prebuilt bundle, as `npm run render` without npm) and of Mitsuba’s python (import, JIT, one render), same spp.',
-      'Agreement: |z| of the image-mean difference (Mitsuba’s image is mirrored left–right by its look_at frame; the mean is not).',
+      'Agreement: |z| of the image-mean difference (Mitsuba’s image is mirrored left–right by its look_at frame; the mean is not), each mean’s standard error from its pixels’ with the R, G, B errors added as fully correlated (exact for these gray scenes; bench/peerStatistics.ts).',
     ],
     rows,
   };
