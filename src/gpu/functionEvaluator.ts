@@ -12,7 +12,7 @@
 // the library with the WESL parser and builds that wrapper for vecNf arguments.
 // The exercise grader (src/grading/grade.ts) builds its harness from the same pieces:
 // the word encoding (encodeScalar, bitsToF32) and the argument loads (argumentLoads).
-import { parseSrcModule, type FnElem, type TypeRefElem } from 'wesl';
+import { parseSrcModule, type ExpressionElem, type FnElem, type TypeRefElem } from 'wesl';
 import { runCompute } from './compute.ts';
 import { linkKernel, type ShaderLibrary } from './link.ts';
 
@@ -289,11 +289,38 @@ export interface FunctionSignature {
   /** The signature as one line, e.g. `transmittanceHomogeneous(sigmaT: f32, distance: f32) -> f32`. */
   text: string;
   /**
-   * Whether the declaration carries a link condition (@if, @elif, @else): such a function
-   * exists only in kernels linked with it (integrator.wesl's scene-grid lookups under
-   * gridMedia), not in an evaluation kernel, which links with none.
+   * Whether the declaration is absent from a kernel linked with no conditions, as an
+   * evaluation kernel is: an @if that does not hold then (integrator.wesl's scene-grid
+   * lookups under gridMedia), or any @elif or @else.
    */
   conditional: boolean;
+}
+
+/**
+ * Whether a WESL translate-time condition (`a`, `!a`, `a && (b || !c)`, `true`, `false`)
+ * holds when no condition is set, as in an evaluation kernel, which links with none: every
+ * name is false. An expression of another kind counts as not holding.
+ */
+export function holdsWithNoConditions(expression: ExpressionElem): boolean {
+  switch (expression.kind) {
+    case 'literal':
+      return expression.value === 'true';
+    case 'ref':
+      return false;
+    case 'parenthesized-expression':
+      return holdsWithNoConditions(expression.expression);
+    case 'unary-expression':
+      return expression.operator.value === '!' && !holdsWithNoConditions(expression.expression);
+    case 'binary-expression': {
+      const left = holdsWithNoConditions(expression.left);
+      const right = holdsWithNoConditions(expression.right);
+      if (expression.operator.value === '&&') return left && right;
+      if (expression.operator.value === '||') return left || right;
+      return false;
+    }
+    default:
+      return false;
+  }
 }
 
 /** The library module `shaders/NAME.wesl`'s function declarations, in source order. */
@@ -319,9 +346,12 @@ export function functionsOf(library: ShaderLibrary, module: string): FunctionSig
       const result = decl.returnType ? classifyType(library, text(decl.returnType)) : null;
       const fn = decl.name.ident.originalName;
       const list = params.map((p) => `${p.name}: ${p.type.text}`).join(', ');
-      const conditional = (decl.attributes ?? []).some((a) =>
-        ['@if', '@elif', '@else'].includes(a.attribute.kind),
-      );
+      const conditional = (decl.attributes ?? []).some((a) => {
+        const attribute = a.attribute;
+        if (attribute.kind === '@if') return !holdsWithNoConditions(attribute.param.expression);
+        // @elif and @else depend on the declarations before them: taken as absent.
+        return attribute.kind === '@elif' || attribute.kind === '@else';
+      });
       return {
         module,
         fn,

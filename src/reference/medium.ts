@@ -244,8 +244,11 @@ export function gridScaledSamples(
 ): Float32Array<ArrayBuffer> {
   const [nx, ny, nz] = grid.dimensions;
   const samples = new Float32Array(Math.max(1, nx * ny * nz));
+  // The scale as the kernel's records hold it (f32): the majorant grid is scaled by that
+  // value, and a scaled sample must not exceed the scaled majorant by a rounding.
+  const scale = Math.fround(grid.densityScale);
   for (let i = 0; i < samples.length; i++)
-    samples[i] = saturatingProduct(grid.densityScale, clampDensity(volume[i] ?? 0));
+    samples[i] = saturatingProduct(scale, clampDensity(volume[i] ?? 0));
   return samples;
 }
 
@@ -502,7 +505,8 @@ export function gridMajorantAlongRay(
 /**
  * gridMajorantAlongRay for a segment [t0, t1] that the caller knows to lie in the majorant
  * grid's closed box (WGSL gridMajorantAlongSegment, the DDA without its slab test): there
- * the slab test returns the segment itself.
+ * the slab test returns the segment itself. Outside that contract the two differ (this one
+ * still clips).
  */
 export function gridMajorantAlongSegment(
   majorantGrid: DensityGrid,

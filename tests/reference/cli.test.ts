@@ -306,6 +306,27 @@ describe('scatterbook: clear errors (exit status 2)', () => {
   });
 });
 
+describe('conditional declarations (what an evaluation kernel, linked with no conditions, keeps)', () => {
+  it('reads names as false, and !, &&, || and parentheses', () => {
+    const cases: [string, boolean][] = [
+      ['gridMedia', false],
+      ['!gridMedia', true],
+      ['true', true],
+      ['a || !b', true],
+      ['!a && (b || !c)', true],
+      ['!(a || b) && c', false],
+      ['!(oneHomogeneousMedium || oneGridMedium)', true],
+    ];
+    const library = {
+      'c.wesl': cases
+        .map(([condition], i) => `@if(${condition}) fn f${i}() -> f32 { return 1.0; }`)
+        .join('\n'),
+    };
+    const functions = functionsOf(library, 'c');
+    expect(functions.map((f) => !f.conditional)).toEqual(cases.map(([, holds]) => holds));
+  });
+});
+
 describe('functionEvaluator signatures (in process, a library of its own)', () => {
   const library = {
     'vectors.wesl': [
@@ -317,6 +338,7 @@ describe('functionEvaluator signatures (in process, a library of its own)', () =
       'fn firstOf(p: Pair) -> f32 { return p.a; }',
       'fn makePair(a: f32) -> Pair { return Pair(a, a); }',
       '@if(someCondition) fn onlyUnderCondition(x: f32) -> f32 { return x; }',
+      '@if(!someCondition) fn unlessCondition(x: f32) -> f32 { return x; }',
     ].join('\n'),
   };
 
@@ -329,6 +351,7 @@ describe('functionEvaluator signatures (in process, a library of its own)', () =
       'firstOf(p: Pair) -> f32',
       'makePair(a: f32) -> Pair',
       'onlyUnderCondition(x: f32) -> f32',
+      'unlessCondition(x: f32) -> f32',
     ]);
     expect(functions[2]?.params[0]?.type.components).toBe(3);
     expect(specFor(functions[2] as never).args).toEqual(['f32[3]', 'i32']);
@@ -336,8 +359,18 @@ describe('functionEvaluator signatures (in process, a library of its own)', () =
     expect(() => specFor(functions[3] as never)).toThrow(/parameter p has type Pair \(a struct\)/);
     expect(() => specFor(functions[4] as never)).toThrow(/its result has type Pair/);
     // An evaluation kernel links with no conditions, where this function does not exist.
-    expect(functions.map((f) => f.conditional)).toEqual([false, false, false, false, false, true]);
+    // (@if(!c) holds there, so that one is evaluable.)
+    expect(functions.map((f) => f.conditional)).toEqual([
+      false,
+      false,
+      false,
+      false,
+      false,
+      true,
+      false,
+    ]);
     expect(() => specFor(functions[5] as never)).toThrow(/exists only under a link condition/);
+    expect(specFor(functions[6] as never).args).toEqual(['f32']);
   });
 
   it('passes vecNf arguments through a wrapper and returns vecNf results (on the GPU)', async () => {

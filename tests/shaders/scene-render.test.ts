@@ -255,7 +255,14 @@ describe('scene kernel on the GPU', () => {
       // A 3³ grid with empty, thin and dense cells (delta tracking meets null collisions,
       // ratio-tracked shadow rays start and end inside the medium at the point light).
       const density = Array.from({ length: 27 }, (_, i) => [0, 0.2, 1, 3][(i * 7) % 4]!);
-      const gridScene = (sigmaA: number[], sigmaS: number[]) =>
+      // A 4×3×2 grid (x fastest) as well, dense only in sample (0, 0, 1): a lookup that
+      // swapped axes or strides would put the dense sample elsewhere.
+      const nonCubic = Array.from({ length: 24 }, (_, i) => (i === 12 ? 6 : 0.05 * (i % 5)));
+      const gridScene = (
+        sigmaA: number[],
+        sigmaS: number[],
+        shape: 'cubic' | 'non-cubic' = 'cubic',
+      ) =>
         sceneFrom({
           image: { width: 6, height: 6 },
           samplesPerPixel: 48,
@@ -275,7 +282,10 @@ describe('scene kernel on the GPU', () => {
               sigmaA,
               sigmaS,
               phase: { type: 'henyey-greenstein', g: 0.5 },
-              grid: { dimensions: [3, 3, 3], density },
+              grid:
+                shape === 'cubic'
+                  ? { dimensions: [3, 3, 3], density }
+                  : { dimensions: [4, 3, 2], density: nonCubic },
             },
           ],
           lights: [
@@ -284,11 +294,12 @@ describe('scene kernel on the GPU', () => {
           ],
         });
       // Gray media take the free flight's scalar test (plan condition grayMedia).
-      for (const [name, sigmaA, sigmaS, gray] of [
-        ['chromatic', [0.2, 0.1, 0.6], [1.5, 2, 0.8], false],
-        ['gray', [0.3, 0.3, 0.3], [1.5, 1.5, 1.5], true],
+      for (const [name, sigmaA, sigmaS, gray, shape] of [
+        ['chromatic', [0.2, 0.1, 0.6], [1.5, 2, 0.8], false, 'cubic'],
+        ['gray', [0.3, 0.3, 0.3], [1.5, 1.5, 1.5], true, 'cubic'],
+        ['gray 4×3×2', [0.3, 0.3, 0.3], [1.5, 1.5, 1.5], true, 'non-cubic'],
       ] as const) {
-        const scene = await gridScene([...sigmaA], [...sigmaS]);
+        const scene = await gridScene([...sigmaA], [...sigmaS], shape);
         const conditions = plan(scene.scene).conditions;
         expect(conditions, 'the plan picks it').toMatchObject({
           oneGridMedium: true,
@@ -311,8 +322,12 @@ describe('scene kernel on the GPU', () => {
   );
 
   it(
-    'a grid whose box is flat in f32 (max = min + 1e-9): the one-grid path tracer sees no medium and ends (all pixels 0)',
+    'a grid record without volume under a valid medium box (the kernel’s empty-box and zero-majorant substitution): no medium, every pixel 0, GPU = twin',
     async () => {
+      // Scenes cannot make this (validation wants dimensions ≥ 1 and the grid fills its
+      // medium's bounds), so the grid record is changed by hand: the medium's segments stay
+      // non-empty and reach the lookups and the DDA, which must see no density and a
+      // majorant of 0.
       const scene = await sceneFrom({
         image: { width: 4, height: 4 },
         samplesPerPixel: 8,
@@ -323,13 +338,13 @@ describe('scene kernel on the GPU', () => {
           position: [0.5, 0.5, 3],
           direction: [0, 0, -1],
           up: [0, 1, 0],
-          width: 2,
-          height: 2,
+          width: 1,
+          height: 1,
         },
         media: [
           {
             type: 'grid',
-            bounds: { type: 'box', min: [0, 0, 1], max: [1, 1, 1 + 1e-9] },
+            bounds: { type: 'box', min: [0, 0, 0], max: [1, 1, 1] },
             sigmaA: [0.2, 0.2, 0.2],
             sigmaS: [5, 5, 5],
             phase: { type: 'isotropic' },
@@ -339,8 +354,25 @@ describe('scene kernel on the GPU', () => {
         lights: [{ type: 'directional', direction: [0, 0, -1], irradiance: [1, 1, 1] }],
       });
       expect(plan(scene.scene).conditions.oneGridMedium).toBe(true);
-      const estimate = await gpu(scene);
-      expect(Array.from(estimate.mean)).toEqual(new Array(4 * 4 * 3).fill(0));
+      // The fine grid gets no samples along x (gridHasVolume is false), its box and the
+      // majorant grid stay as they were: without the substitution, a lookup would read the
+      // buffer's one sample (1) and the DDA find a majorant, and the medium would scatter.
+      const grid = scene.grid!;
+      const flattened = {
+        ...scene,
+        grid: {
+          ...grid,
+          fine: {
+            ...grid.fine,
+            grid: { ...grid.fine.grid, dimensions: [0, 2, 2] as [number, number, number] },
+          },
+        },
+      };
+      const zeros = new Array(4 * 4 * 3).fill(0);
+      expect(Array.from((await gpu(flattened)).mean)).toEqual(zeros);
+      expect(Array.from((await cpu(flattened)).mean)).toEqual(zeros);
+      // The same scene unflattened is lit: the test looks where light would be.
+      expect(Math.max(...(await gpu(scene)).mean)).toBeGreaterThan(0.01);
     },
     GPU_TIMEOUT,
   );
