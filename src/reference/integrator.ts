@@ -985,6 +985,13 @@ export function mediumFreeFlight(
   const majorant = mediumMajorant(scene, medium, origin, direction, segment);
   if (!(majorant > 0)) return flight;
   const emission = on(scene, 'emission');
+  // A real collision at t ends the flight there.
+  const end = (t: number, event: number, weight: Rgb): FreeFlight => ({
+    ...flight,
+    t,
+    event,
+    weight,
+  });
   let t = segment[0];
   for (let steps = 0; ; steps++) {
     const step = sampleFreeFlight(majorant, rngNextFloat(state));
@@ -1000,20 +1007,13 @@ export function mediumFreeFlight(
       // except that a throughput of 0 goes on rather than being absorbed.
       const sigmaT = density * (medium.sigmaA[0] + medium.sigmaS[0]);
       const real = rngNextFloat(state) * majorant < sigmaT || sigmaT >= majorant;
-      if (real && !(medium.sigmaS[0] > 0)) {
-        flight.t = t;
-        flight.event = FLIGHT_ABSORBED;
-        return flight;
-      }
-      if (real) {
-        flight.t = t;
-        flight.event = FLIGHT_SCATTERED;
-        flight.weight = scale(
-          flight.weight,
-          medium.sigmaS[0] / (medium.sigmaA[0] + medium.sigmaS[0]),
+      if (real && !(medium.sigmaS[0] > 0)) return end(t, FLIGHT_ABSORBED, flight.weight);
+      if (real)
+        return end(
+          t,
+          FLIGHT_SCATTERED,
+          scale(flight.weight, medium.sigmaS[0] / (medium.sigmaA[0] + medium.sigmaS[0])),
         );
-        return flight;
-      }
       continue;
     }
     const sigmaA = scale(medium.sigmaA, density);
@@ -1032,17 +1032,13 @@ export function mediumFreeFlight(
     // A real collision scatters with the albedo as weight; it absorbs only where nothing
     // scatters (integrator.wesl mediumFreeFlight).
     const real = xi < pa + ps || pn <= 0;
-    if (!(total > 0) || (real && !(ps > 0))) {
-      flight.t = t;
-      flight.event = FLIGHT_ABSORBED;
-      return flight;
-    }
-    if (real) {
-      flight.t = t;
-      flight.event = FLIGHT_SCATTERED;
-      flight.weight = scale(mul(flight.weight, sigmaS), total / (majorant * (pa + ps)));
-      return flight;
-    }
+    if (!(total > 0) || (real && !(ps > 0))) return end(t, FLIGHT_ABSORBED, flight.weight);
+    if (real)
+      return end(
+        t,
+        FLIGHT_SCATTERED,
+        scale(mul(flight.weight, sigmaS), total / (majorant * (pa + ps))),
+      );
     flight.weight = scale(mul(flight.weight, sigmaN), total / (majorant * pn));
   }
 }
